@@ -1,0 +1,186 @@
+"""The metadata file beside a recording (``<stem>.meta.yaml``): parsing and schema checks.
+
+Every key is known (a misspelt key is an error, not silently ignored), every value has a type,
+and errors point at the line of the offending key in the YAML file.
+"""
+
+from collections.abc import Mapping
+from numbers import Real
+from typing import Any
+
+import yaml
+
+from sim.experiment.errors import RecordingError
+
+FORMAT_VERSION = 1
+DEFAULT_FILTER_ORDER = 4
+
+# key -> (type, required). ``bool`` is a subclass of ``int`` in Python, so booleans are
+# rejected explicitly where a number is expected (see _has_type).
+_TOP_LEVEL = {
+    "format_version": (int, True),
+    "description": (str, True),
+    "synthetic": (bool, True),
+    "sampling_rate_hz": (Real, True),
+    "units": (Mapping, True),
+    "sensor": (Mapping, True),
+    "trigger_angle_rad": (Real, False),
+    "synthesis": (Mapping, False),
+}
+_SENSOR = {
+    "axis": (str, True),
+    "bandwidth_hz": (Real, True),
+    "range": (Real, True),
+    "filter_order": (int, False),
+}
+_SYNTHESIS = {
+    "seed": (int, True),
+    "sensor_settings": (Mapping, True),
+    "sensor_draws": (Mapping, True),
+    "provenance": (Mapping, True),
+}
+
+KeyLines = dict[tuple[str, ...], int]
+
+
+def parse_metadata(text: str, source: str) -> tuple[dict[str, Any], KeyLines]:
+    """Parse and check metadata YAML text.
+
+    Returns the metadata mapping and the 1-based line of every key (by key path), used to
+    point later consistency errors at the right line.
+    """
+    try:
+        node = yaml.compose(text, Loader=yaml.SafeLoader)
+        metadata = yaml.safe_load(text)
+    except yaml.YAMLError as exc:
+        mark = getattr(exc, "problem_mark", None)
+        line = None if mark is None else mark.line + 1
+        raise RecordingError(source, f"not valid YAML ({exc})", line) from exc
+    if not isinstance(metadata, dict):
+        raise RecordingError(source, "metadata must be a YAML mapping of keys to values")
+    lines = _key_lines(node)
+    check_metadata(metadata, source, lines)
+    return metadata, lines
+
+
+def check_metadata(metadata: Mapping[str, Any], source: str, lines: KeyLines) -> None:
+    """Check keys, types and the values that do not depend on the data (raises RecordingError)."""
+    _check_mapping(metadata, _TOP_LEVEL, (), source, lines)
+    _check_mapping(metadata["sensor"], _SENSOR, ("sensor",), source, lines)
+    if metadata["format_version"] != FORMAT_VERSION:
+        raise RecordingError(
+            source,
+            f"format_version {metadata['format_version']} is not supported "
+            f"(this reader knows version {FORMAT_VERSION})",
+            lines.get(("format_version",)),
+        )
+    rate = metadata["sampling_rate_hz"]
+    _require_positive(rate, ("sampling_rate_hz",), source, lines)
+    sensor = metadata["sensor"]
+    _require_positive(sensor["bandwidth_hz"], ("sensor", "bandwidth_hz"), source, lines)
+    _require_positive(sensor["range"], ("sensor", "range"), source, lines)
+    if sensor["bandwidth_hz"] >= rate / 2:
+        raise RecordingError(
+            source,
+            f"sensor bandwidth_hz {sensor['bandwidth_hz']} Hz is not below the Nyquist "
+            f"frequency {rate / 2} Hz of sampling_rate_hz {rate} Hz: the recording would be "
+            "aliased, or one of the two values is wrong",
+            lines.get(("sensor", "bandwidth_hz")),
+        )
+    if sensor.get("filter_order", DEFAULT_FILTER_ORDER) < 1:
+        raise RecordingError(
+            source, "sensor filter_order must be at least 1", lines.get(("sensor", "filter_order"))
+        )
+    for column, unit in metadata["units"].items():
+        if not isinstance(unit, str):
+            raise RecordingError(
+                source,
+                f"unit of column '{column}' must be text, got {unit!r}",
+                lines.get(("units", str(column))),
+            )
+    _check_synthesis(metadata, source, lines)
+
+
+def _check_synthesis(metadata: Mapping[str, Any], source: str, lines: KeyLines) -> None:
+    """A synthetic recording must say how it was made; a measured one must not claim to."""
+    synthesis = metadata.get("synthesis")
+    if metadata["synthetic"] and synthesis is None:
+        raise RecordingError(
+            source,
+            "synthetic: true needs a 'synthesis' block (seed, sensor_settings, sensor_draws, "
+            "provenance) recording every setting used",
+            lines.get(("synthetic",)),
+        )
+    if not metadata["synthetic"] and synthesis is not None:
+        raise RecordingError(
+            source,
+            "a 'synthesis' block is present but synthetic is false: say which it is",
+            lines.get(("synthesis",)),
+        )
+    if synthesis is not None:
+        _check_mapping(synthesis, _SYNTHESIS, ("synthesis",), source, lines)
+
+
+def _check_mapping(
+    mapping: Mapping[str, Any],
+    schema: Mapping[str, tuple[type, bool]],
+    where: tuple[str, ...],
+    source: str,
+    lines: KeyLines,
+) -> None:
+    """Unknown keys, missing required keys and wrong types, each reported at its line."""
+    prefix = ".".join(where) + "." if where else ""
+    for key in mapping:
+        if key not in schema:
+            raise RecordingError(
+                source,
+                f"unknown metadata key '{prefix}{key}' (known keys: {', '.join(schema)})",
+                lines.get((*where, str(key))),
+            )
+    for key, (kind, required) in schema.items():
+        if key not in mapping:
+            if required:
+                raise RecordingError(
+                    source, f"missing metadata key '{prefix}{key}'", lines.get(where)
+                )
+            continue
+        if not _has_type(mapping[key], kind):
+            raise RecordingError(
+                source,
+                f"metadata key '{prefix}{key}' must be {_type_name(kind)}, got {mapping[key]!r}",
+                lines.get((*where, key)),
+            )
+
+
+def _has_type(value: Any, kind: type) -> bool:
+    if kind is not bool and isinstance(value, bool):
+        return False
+    return isinstance(value, kind)
+
+
+def _type_name(kind: type) -> str:
+    return {
+        int: "an integer",
+        str: "text",
+        bool: "true or false",
+        Real: "a number",
+        Mapping: "a mapping",
+    }[kind]
+
+
+def _require_positive(value: float, key: tuple[str, ...], source: str, lines: KeyLines) -> None:
+    if not value > 0:
+        raise RecordingError(
+            source, f"metadata key '{'.'.join(key)}' must be positive, got {value}", lines.get(key)
+        )
+
+
+def _key_lines(node: yaml.Node | None, prefix: tuple[str, ...] = ()) -> KeyLines:
+    """1-based line of every mapping key in a composed YAML document, by key path."""
+    lines: KeyLines = {}
+    if isinstance(node, yaml.MappingNode):
+        for key_node, value_node in node.value:
+            path = (*prefix, str(key_node.value))
+            lines[path] = key_node.start_mark.line + 1
+            lines.update(_key_lines(value_node, path))
+    return lines

@@ -1,0 +1,94 @@
+"""analyze_run, combine_sweep and the `sim analyze` subcommand on synthetic runs."""
+
+import argparse
+
+import numpy as np
+import pytest
+import xarray as xr
+
+from sim.analysis.bifurcation import combine_sweep
+from sim.analysis.cli import register
+from sim.analysis.run import analyze_run
+
+TRANSIENT = 20
+
+
+@pytest.fixture(scope="module")
+def ideal_analysis(ideal_run):
+    return analyze_run(ideal_run, transient_revolutions=TRANSIENT)
+
+
+@pytest.fixture(scope="module")
+def duffing_analysis(duffing_run):
+    return analyze_run(duffing_run, transient_revolutions=TRANSIENT)
+
+
+def test_ideal_run_is_periodic(ideal_analysis):
+    assert list(ideal_analysis["channel"].values) == ["crank.x", "crank.y", "slider.x", "slider.y"]
+    assert set(ideal_analysis["verdict"].values) == {"periodic"}
+    assert (ideal_analysis["section_period"] == 1).all()
+
+
+def test_duffing_joint_is_chaotic_across_and_periodic_along(duffing_analysis):
+    verdict = duffing_analysis["verdict"].to_series()
+    assert verdict["A.x"] == "chaotic"
+    assert verdict["A.y"] == "periodic"
+    assert duffing_analysis["lyapunov_exponent"].sel(channel="A.x") > 0
+    assert duffing_analysis["zero_one_K"].sel(channel="A.x") > 0.8
+    assert list(duffing_analysis["channel_joint"].values) == ["A", "A"]
+    assert list(duffing_analysis["channel_axis"].values) == ["x", "y"]
+
+
+def test_output_is_cf_annotated(duffing_analysis):
+    for name, variable in duffing_analysis.variables.items():
+        if name != "channel":
+            assert {"units", "long_name"} <= set(variable.attrs), name
+    for value in duffing_analysis.attrs.values():
+        assert isinstance(value, str | int | float)
+    steady = duffing_analysis.sizes["revolution"]
+    assert steady == 160 - TRANSIENT
+    assert duffing_analysis["phase_eccentricity"].dims == ("sample", "channel")
+
+
+def test_sweep_pads_revolutions(duffing_run):
+    shorter = duffing_run.isel(revolution=slice(0, 100))
+    sweep = combine_sweep([duffing_run, shorter], "joints.A.clearance", [1e-4, 2e-4])
+    assert sweep["parameter"].attrs["name"] == "joints.A.clearance"
+    assert sweep.sizes["revolution"] == 160
+    assert np.isnan(sweep["section_eccentricity"].isel(parameter=1, revolution=-1)).all()
+    assert not np.isnan(sweep["section_eccentricity"].isel(parameter=0)).any()
+
+
+def parse(argv: list[str]) -> argparse.Namespace:
+    parser = argparse.ArgumentParser(prog="sim")
+    register(parser.add_subparsers(required=True))
+    return parser.parse_args(argv)
+
+
+def test_cli_writes_the_analysis(ideal_run, tmp_path):
+    run_file, out_file = tmp_path / "run.nc", tmp_path / "run-analysis.nc"
+    ideal_run.to_netcdf(run_file)
+    args = parse(["analyze", str(run_file), "-o", str(out_file), "--transient", "10"])
+    assert args.func(args) == 0
+    with xr.open_dataset(out_file) as written:
+        assert set(written["verdict"].values) == {"periodic"}
+        assert written.attrs["transient_revolutions"] == 10
+    assert sorted(path.name for path in tmp_path.iterdir()) == ["run-analysis.nc", "run.nc"]
+
+
+def test_cli_rejects_a_missing_variable(ideal_run, tmp_path, capsys):
+    run_file, out_file = tmp_path / "run.nc", tmp_path / "out.nc"
+    ideal_run.drop_vars("section_velocity").to_netcdf(run_file)
+    args = parse(["analyze", str(run_file), "-o", str(out_file)])
+    assert args.func(args) == 1
+    message = capsys.readouterr().err
+    assert str(run_file) in message and "'section_velocity'" in message
+    assert not out_file.exists()
+
+
+def test_cli_rejects_too_few_revolutions(ideal_run, tmp_path, capsys):
+    run_file = tmp_path / "run.nc"
+    ideal_run.isel(revolution=slice(0, 30)).to_netcdf(run_file)
+    args = parse(["analyze", str(run_file), "-o", str(tmp_path / "out.nc"), "--transient", "10"])
+    assert args.func(args) == 1
+    assert "revolution" in capsys.readouterr().err
