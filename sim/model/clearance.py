@@ -1,0 +1,435 @@
+"""Clearance joints: the gaps they monitor and the contact forces they apply.
+
+Revolute clearance (bearing point B on one body, journal point J on the other):
+    e = r_J − r_B, δ = |e| − c, n = e/|e|, t = k × n;
+contact points Q_J = r_J + R_J n and Q_B = r_B + R_B n; δ̇ = n·ė; slip v_t is the
+tangential relative velocity of the material points at Q_J and Q_B. The force
+−F_n n + F_t t acts on the journal at Q_J and its opposite on the bearing at Q_B
+(Flores & Ambrósio, Comput. Struct. 82, 2004).
+
+Translational clearance (rigid slider of length L and width W in a ground guide
+of width H through point p with direction t_g and normal n_g): each corner i is
+checked against both walls, δ_i± = ±(r_i − p)·n_g − H/2. When the two corners of
+one edge both penetrate the same wall the face law F = K_face δ̄ acts at the
+centroid of the penetrated (trapezoidal) area, δ̄ the mean depth of the edge;
+otherwise every penetrating corner gets a Lankarani–Nikravesh force with its
+own onset memory (Flores et al., Multibody Syst. Dyn. 16, 2006; the paper's
+eqs. 10–18). Friction acts along the guide at each force's point.
+
+Memory `mem[g]` per gap g: (in-contact flag, onset rate δ̇⁻ in m/s, penetrated-
+while-apart mark), the first two written by the integrator at the located
+crossing. A stage that sees δ > 0 before the
+crossing was located uses its own δ̇ as δ̇⁻: the same value it tends to at the
+crossing.
+
+Gap numbering: revolute clearance j is gap j; translational clearance j owns
+gaps nr + 8j + 2i + w for corner i (0..3) and wall w (0: +n_g side, 1: −n_g side).
+"""
+
+import numba
+import numpy as np
+
+from sim.model.contact import friction_force, lankarani_nikravesh
+from sim.model.kinematics import apply_point_force, point_position, point_velocity, rotate
+from sim.model.system import (
+    CORNERS_PER_SLIDER,
+    CT_EXPONENT,
+    CT_SLIDER_LAW,
+    CT_FRICTION,
+    CT_MIN_IMPACT_SPEED,
+    CT_RESTITUTION,
+    CT_V0,
+    CT_V1,
+    GAPS_PER_SLIDER,
+    OUT_FRICTION_FORCE,
+    OUT_NORMAL_FORCE,
+    OUT_PENETRATION,
+    OUT_RATE,
+    OUT_STATE,
+    RJ_BEARING_RADIUS,
+    RJ_CLEARANCE,
+    RJ_JOURNAL_RADIUS,
+    RJ_STIFFNESS,
+    SLIDER_LAW_WINKLER,
+    TJ_ANGLE,
+    TJ_GAP_WIDTH,
+    TJ_K_CORNER,
+    TJ_K_FACE,
+    TJ_LENGTH,
+    TJ_PX,
+    TJ_PY,
+    TJ_WIDTH,
+)
+
+# Corner signs in the slider frame (x along the slider's length, y across), in
+# order around the block so that corners i and i+1 (mod 4) share an edge.
+CORNER_SX = (1.0, -1.0, -1.0, 1.0)
+CORNER_SY = (1.0, 1.0, -1.0, -1.0)
+
+
+@numba.njit(cache=True)
+def eccentricity(sys, j: int, q: np.ndarray) -> tuple[float, float]:
+    """Eccentricity vector e = r_J − r_B (m) of revolute clearance j."""
+    bx, by = point_position(sys, sys.rj_pts[j, 0], q)
+    jx, jy = point_position(sys, sys.rj_pts[j, 1], q)
+    return jx - bx, jy - by
+
+
+@numba.njit(cache=True)
+def eccentricity_rate(sys, j: int, q: np.ndarray, qd: np.ndarray) -> tuple[float, float]:
+    """ė (m/s) of revolute clearance j."""
+    bx, by = point_velocity(sys, sys.rj_pts[j, 0], q, qd, 0.0, 0.0)
+    jx, jy = point_velocity(sys, sys.rj_pts[j, 1], q, qd, 0.0, 0.0)
+    return jx - bx, jy - by
+
+
+@numba.njit(cache=True)
+def guide_frame(sys, j: int) -> tuple[float, float, float, float]:
+    """Tangent and normal (t_x, t_y, n_x, n_y) of the guide of translational clearance j."""
+    c = np.cos(sys.tj_f[j, TJ_ANGLE])
+    s = np.sin(sys.tj_f[j, TJ_ANGLE])
+    return c, s, -s, c
+
+
+@numba.njit(cache=True)
+def corner_offset(sys, j: int, i: int, q: np.ndarray) -> tuple[float, float]:
+    """Global vector (m) from the slider's centre to its corner i."""
+    o = sys.tj_off[j]
+    return rotate(
+        q[o + 2],
+        0.5 * CORNER_SX[i] * sys.tj_f[j, TJ_LENGTH],
+        0.5 * CORNER_SY[i] * sys.tj_f[j, TJ_WIDTH],
+    )
+
+
+@numba.njit(cache=True)
+def slider_point_velocity(
+    sys, j: int, qd: np.ndarray, ax: float, ay: float
+) -> tuple[float, float]:
+    """Velocity (m/s) of the slider's material point at offset (ax, ay) from its centre."""
+    o = sys.tj_off[j]
+    w = qd[o + 2]
+    return qd[o] - w * ay, qd[o + 1] + w * ax
+
+
+@numba.njit(cache=True)
+def lateral_offset(sys, j: int, q: np.ndarray, ax: float, ay: float) -> float:
+    """(r − p)·n_g (m) of the slider point at offset (ax, ay) from its centre."""
+    o = sys.tj_off[j]
+    _, _, nx, ny = guide_frame(sys, j)
+    return (q[o] + ax - sys.tj_f[j, TJ_PX]) * nx + (q[o + 1] + ay - sys.tj_f[j, TJ_PY]) * ny
+
+
+@numba.njit(cache=True)
+def gap(sys, g: int, q: np.ndarray, qd: np.ndarray) -> tuple[float, float]:
+    """Penetration δ (m, negative while apart) and its rate δ̇ (m/s) of gap g."""
+    nr = sys.rj_pts.shape[0]
+    if g < nr:
+        ex, ey = eccentricity(sys, g, q)
+        vx, vy = eccentricity_rate(sys, g, q, qd)
+        e = np.hypot(ex, ey)
+        rate = (ex * vx + ey * vy) / e if e > 0.0 else 0.0
+        return e - sys.rj_f[g, RJ_CLEARANCE], rate
+    k = g - nr
+    j = k // GAPS_PER_SLIDER
+    i = (k % GAPS_PER_SLIDER) // 2
+    side = 1.0 if k % 2 == 0 else -1.0
+    ax, ay = corner_offset(sys, j, i, q)
+    vx, vy = slider_point_velocity(sys, j, qd, ax, ay)
+    _, _, nx, ny = guide_frame(sys, j)
+    delta = side * lateral_offset(sys, j, q, ax, ay) - 0.5 * sys.tj_f[j, TJ_GAP_WIDTH]
+    return delta, side * (vx * nx + vy * ny)
+
+
+@numba.njit(cache=True)
+def _flagged_edge(mem: np.ndarray, base: int, w: int) -> int:
+    """First corner i of an edge (i, i+1) whose two corners are both flagged in
+    contact with wall w, or -1. The contact mode (face or corners) follows the
+    flags, which change only at located crossings, so a stage can never switch
+    laws before the integrator has found the switch."""
+    for i in range(CORNERS_PER_SLIDER):
+        nxt = (i + 1) % CORNERS_PER_SLIDER
+        if mem[base + 2 * i + w, 0] > 0.0 and mem[base + 2 * nxt + w, 0] > 0.0:
+            return i
+    return -1
+
+
+@numba.njit(cache=True)
+def face_energy(sys, j: int, da: float, db: float) -> float:
+    """Elastic energy (J) of slider j's face pressed in to end depths da, db (m)."""
+    return sys.tj_f[j, TJ_K_FACE] * (da * da + da * db + db * db) / 6.0
+
+
+@numba.njit(cache=True)
+def corner_energy(sys, j: int, delta: float) -> float:
+    """Elastic energy (J) of one corner of slider j pressed in to depth δ (m)."""
+    p = sys.contact[CT_EXPONENT]
+    return sys.tj_f[j, TJ_K_CORNER] * delta ** (p + 1.0) / (p + 1.0)
+
+
+@numba.njit(cache=True)
+def face_switch_energy(sys, mem: np.ndarray, g: int, q: np.ndarray, qd: np.ndarray) -> float:
+    """Jump (J) of the stored contact energy when gap g's corner reaches its wall
+    while the neighbouring corner on the same edge is in contact with it: the
+    paper's laws switch there from one Hertz corner to the face law, whose
+    energy K_face δa²/6 differs from the corner's K δa^(n+1)/(n+1). The jump is
+    released as motion; the energy audit books it (negative: created)."""
+    nr = sys.rj_pts.shape[0]
+    if g < nr or sys.contact[CT_SLIDER_LAW] == SLIDER_LAW_WINKLER:
+        return 0.0
+    k = g - nr
+    j = k // GAPS_PER_SLIDER
+    i = (k % GAPS_PER_SLIDER) // 2
+    w = k % 2
+    base = nr + GAPS_PER_SLIDER * j
+    for nb in ((i + 1) % CORNERS_PER_SLIDER, (i + CORNERS_PER_SLIDER - 1) % CORNERS_PER_SLIDER):
+        if mem[base + 2 * nb + w, 0] > 0.0:
+            da, _ = gap(sys, base + 2 * nb + w, q, qd)
+            da = max(da, 0.0)
+            return face_energy(sys, j, da, 0.0) - corner_energy(sys, j, da)
+    return 0.0
+
+
+@numba.njit(cache=True)
+def _onset_rate(mem: np.ndarray, g: int, rate: float) -> float:
+    """δ̇⁻ of gap g: the memory captured at the crossing, or, before the crossing
+    was located, the current rate. The latter case is marked in mem[g, 2] so the
+    integrator can tell a contact that came and went inside one step (a graze
+    its events would miss) from one that it will locate."""
+    if mem[g, 0] > 0.0:
+        return mem[g, 1]
+    mem[g, 2] = 1.0
+    return rate
+
+
+@numba.njit(cache=True)
+def revolute_clearance_forces(
+    sys, q: np.ndarray, qd: np.ndarray, mem: np.ndarray, gen: np.ndarray, jout: np.ndarray
+) -> tuple[float, float]:
+    """Add the contact forces of every revolute clearance to `gen`; write the
+    per-joint outputs; return (dissipated power W, stored contact energy J)."""
+    ce = sys.contact
+    p_diss = 0.0
+    u_contact = 0.0
+    for j in range(sys.rj_pts.shape[0]):
+        pb = sys.rj_pts[j, 0]
+        pj = sys.rj_pts[j, 1]
+        delta, rate = gap(sys, j, q, qd)
+        jout[j, OUT_PENETRATION] = max(delta, 0.0)
+        jout[j, OUT_RATE] = rate
+        jout[j, OUT_NORMAL_FORCE] = 0.0
+        jout[j, OUT_FRICTION_FORCE] = 0.0
+        jout[j, OUT_STATE] = 0.0
+        if delta <= 0.0:
+            continue
+        k = sys.rj_f[j, RJ_STIFFNESS]
+        fn, fel = lankarani_nikravesh(
+            k,
+            delta,
+            rate,
+            _onset_rate(mem, j, rate),
+            ce[CT_RESTITUTION],
+            ce[CT_EXPONENT],
+            ce[CT_MIN_IMPACT_SPEED],
+        )
+        ex, ey = eccentricity(sys, j, q)
+        e = np.hypot(ex, ey)
+        nx = ex / e
+        ny = ey / e
+        rj = sys.rj_f[j, RJ_JOURNAL_RADIUS]
+        rb = sys.rj_f[j, RJ_BEARING_RADIUS]
+        vjx, vjy = point_velocity(sys, pj, q, qd, rj * nx, rj * ny)
+        vbx, vby = point_velocity(sys, pb, q, qd, rb * nx, rb * ny)
+        slip = -ny * (vjx - vbx) + nx * (vjy - vby)
+        ft = friction_force(fn, slip, ce[CT_FRICTION], ce[CT_V0], ce[CT_V1])
+        fx = -fn * nx - ft * ny
+        fy = -fn * ny + ft * nx
+        apply_point_force(sys, pj, q, fx, fy, rj * nx, rj * ny, gen)
+        apply_point_force(sys, pb, q, -fx, -fy, rb * nx, rb * ny, gen)
+        p_diss += (fn - fel) * rate - ft * slip
+        u_contact += fel * delta / (ce[CT_EXPONENT] + 1.0)
+        jout[j, OUT_NORMAL_FORCE] = fn
+        jout[j, OUT_FRICTION_FORCE] = ft
+        jout[j, OUT_STATE] = 1.0
+    return p_diss, u_contact
+
+
+@numba.njit(cache=True)
+def _slider_force(
+    sys,
+    j: int,
+    q: np.ndarray,
+    qd: np.ndarray,
+    side: float,
+    fn: float,
+    ax: float,
+    ay: float,
+    gen: np.ndarray,
+) -> tuple[float, float]:
+    """Apply a wall's normal force fn (pushing the slider away from wall `side`)
+    and the friction along the guide at slider offset (ax, ay); return the
+    friction force (N, along t_g) and its dissipated power (W)."""
+    tx, ty, nx, ny = guide_frame(sys, j)
+    vx, vy = slider_point_velocity(sys, j, qd, ax, ay)
+    slip = vx * tx + vy * ty
+    ce = sys.contact
+    ft = friction_force(fn, slip, ce[CT_FRICTION], ce[CT_V0], ce[CT_V1])
+    fx = -side * fn * nx + ft * tx
+    fy = -side * fn * ny + ft * ty
+    o = sys.tj_off[j]
+    gen[o] += fx
+    gen[o + 1] += fy
+    gen[o + 2] += ax * fy - ay * fx
+    return ft, -ft * slip
+
+
+@numba.njit(cache=True)
+def _winkler_edge(sys, j, w, q, qd, mem, gen):
+    """The long edge of slider j that faces wall w, pressed into an elastic
+    foundation of stiffness k' = K_face / L per unit length (Winkler).
+
+    With end depths δa, δb (m, negative where apart) the penetrated part is the
+    whole edge (a trapezoid) or, for one corner in, a triangle of length
+    ℓ = L δa / (δa − δb); the elastic force k'·area acts at the area's centroid
+    and derives from U = k' ∫ δ² / 2 ds. Both corners in, this is the paper's face
+    law; one corner in, its wedge limit, continuous with it. Hysteresis damping
+    as Lankarani–Nikravesh, with the rate at the force's point and the onset
+    rate of the edge's first corner.
+
+    Returns (normal force N, friction N, dissipated power W, elastic energy J,
+    deepest penetration m)."""
+    nr = sys.rj_pts.shape[0]
+    base = nr + GAPS_PER_SLIDER * j
+    o = sys.tj_off[j]
+    _, _, nx, ny = guide_frame(sys, j)
+    # Which long edge faces wall w: the one whose outward normal (body +y for
+    # corners 0, 1) points along side·n_g.
+    uy_x, uy_y = rotate(q[o + 2], 0.0, 1.0)
+    side = 1.0 if w == 0 else -1.0
+    a = 0 if side * (uy_x * nx + uy_y * ny) > 0.0 else 2
+    b = a + 1
+    ga = base + 2 * a + w
+    gb = base + 2 * b + w
+    da, ra = gap(sys, ga, q, qd)
+    db, rb = gap(sys, gb, q, qd)
+    if da <= 0.0 and db <= 0.0:
+        return 0.0, 0.0, 0.0, 0.0, 0.0
+    k_face = sys.tj_f[j, TJ_K_FACE]
+    if da > 0.0 and db > 0.0:
+        frac = (da + 2.0 * db) / (3.0 * (da + db))
+        f_el = 0.5 * k_face * (da + db)
+        u_el = k_face * (da * da + da * db + db * db) / 6.0
+    elif da > 0.0:
+        share = da / (da - db)  # ℓ / L
+        frac = share / 3.0
+        f_el = 0.5 * k_face * share * da
+        u_el = k_face * share * da * da / 6.0
+    else:
+        share = db / (db - da)
+        frac = 1.0 - share / 3.0
+        f_el = 0.5 * k_face * share * db
+        u_el = k_face * share * db * db / 6.0
+    rate = ra + frac * (rb - ra)
+    if mem[ga, 0] > 0.0 or mem[gb, 0] > 0.0:
+        onset = max(mem[ga, 1] if mem[ga, 0] > 0.0 else 0.0, mem[gb, 1] if mem[gb, 0] > 0.0 else 0.0)
+    else:
+        onset = _onset_rate(mem, ga if da > 0.0 else gb, rate)
+    ce = sys.contact
+    v_ref = max(onset, ce[CT_MIN_IMPACT_SPEED])
+    fn = max(0.0, f_el * (1.0 + 0.75 * (1.0 - ce[CT_RESTITUTION] ** 2) * rate / v_ref))
+    aax, aay = corner_offset(sys, j, a, q)
+    abx, aby = corner_offset(sys, j, b, q)
+    cx = aax + frac * (abx - aax)
+    cy = aay + frac * (aby - aay)
+    ft, pf = _slider_force(sys, j, q, qd, side, fn, cx, cy, gen)
+    return fn, ft, pf + (fn - f_el) * rate, u_el, max(da, db)
+
+
+@numba.njit(cache=True)
+def translational_clearance_forces(
+    sys, q: np.ndarray, qd: np.ndarray, mem: np.ndarray, gen: np.ndarray, jout: np.ndarray
+) -> tuple[float, float]:
+    """Add the contact forces of every translational clearance to `gen`; write the
+    per-joint outputs; return (dissipated power W, stored contact energy J).
+
+    The face law is an elastic (Winkler) foundation along the edge: pressure
+    k' δ(s) with k' = K_face / L gives the total force K_face δ̄ at the centroid
+    of the penetrated area, exactly the paper's law, and derives from the
+    potential U = K_face (δa² + δa δb + δb²) / 6 of the edge's end depths."""
+    ce = sys.contact
+    nr = sys.rj_pts.shape[0]
+    p_diss = 0.0
+    u_contact = 0.0
+    for j in range(sys.tj_off.shape[0]):
+        row = nr + j
+        base = nr + GAPS_PER_SLIDER * j
+        total_fn = 0.0
+        total_ft = 0.0
+        deepest = 0.0
+        state = 0.0
+        for w in range(2):
+            side = 1.0 if w == 0 else -1.0
+            if ce[CT_SLIDER_LAW] == SLIDER_LAW_WINKLER:
+                fn, ft, pd, ue, depth = _winkler_edge(sys, j, w, q, qd, mem, gen)
+                if fn > 0.0 or depth > 0.0:
+                    state = max(state, 2.0 if depth > 0.0 and fn > 0.0 else 1.0)
+                p_diss += pd
+                u_contact += ue
+                total_fn += fn
+                total_ft += ft
+                deepest = max(deepest, depth)
+                continue
+            first = _flagged_edge(mem, base, w)
+            if first >= 0:
+                second = (first + 1) % CORNERS_PER_SLIDER
+                da, _ = gap(sys, base + 2 * first + w, q, qd)
+                db, _ = gap(sys, base + 2 * second + w, q, qd)
+                # At a located crossing one depth may be a hair below zero.
+                da = max(da, 0.0)
+                db = max(db, 0.0)
+                deepest = max(deepest, da, db)
+                state = 2.0
+                if da + db <= 0.0:
+                    continue
+                aax, aay = corner_offset(sys, j, first, q)
+                abx, aby = corner_offset(sys, j, second, q)
+                frac = (da + 2.0 * db) / (3.0 * (da + db))
+                cx = aax + frac * (abx - aax)
+                cy = aay + frac * (aby - aay)
+                fn = sys.tj_f[j, TJ_K_FACE] * 0.5 * (da + db)
+                ft, pf = _slider_force(sys, j, q, qd, side, fn, cx, cy, gen)
+                p_diss += pf
+                u_contact += face_energy(sys, j, da, db)
+                total_fn += fn
+                total_ft += ft
+                continue
+            for i in range(CORNERS_PER_SLIDER):
+                g = base + 2 * i + w
+                delta, rate = gap(sys, g, q, qd)
+                if delta <= 0.0:
+                    continue
+                deepest = max(deepest, delta)
+                fn, fel = lankarani_nikravesh(
+                    sys.tj_f[j, TJ_K_CORNER],
+                    delta,
+                    rate,
+                    _onset_rate(mem, g, rate),
+                    ce[CT_RESTITUTION],
+                    ce[CT_EXPONENT],
+                    ce[CT_MIN_IMPACT_SPEED],
+                )
+                ax, ay = corner_offset(sys, j, i, q)
+                ft, pf = _slider_force(sys, j, q, qd, side, fn, ax, ay, gen)
+                p_diss += pf + (fn - fel) * rate
+                u_contact += corner_energy(sys, j, delta)
+                total_fn += fn
+                total_ft += ft
+                state = max(state, 1.0)
+        jout[row, OUT_PENETRATION] = deepest
+        jout[row, OUT_NORMAL_FORCE] = total_fn
+        jout[row, OUT_FRICTION_FORCE] = total_ft
+        jout[row, OUT_STATE] = state
+        o = sys.tj_off[j]
+        _, _, nx, ny = guide_frame(sys, j)
+        jout[row, OUT_RATE] = qd[o] * nx + qd[o + 1] * ny
+    return p_diss, u_contact

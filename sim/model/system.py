@@ -1,0 +1,102 @@
+"""The compiled description of a planar multibody system.
+
+A scene is turned (by `sim.model.assembly`) into one `System`: plain arrays and
+numbers that the numba kernels read. Nothing here knows about six-bars; a scene
+is data.
+
+Generalized coordinates q (n entries):
+  rigid body: (x, y, θ) of its centre of mass, θ the angle of its body frame;
+  ANCF beam: per node (r_x, r_y, ∂r_x/∂x, ∂r_y/∂x).
+
+Points (where joints attach), by kind:
+  POINT_GROUND  fixed global position u;
+  POINT_RIGID   body-frame vector u from the centre of mass of the rigid body whose
+                coordinates start at `off`;
+  POINT_NODE    position coordinates of a beam node starting at `off` (u unused).
+
+Ideal constraints (rows Φ(q, t) = 0), by type, with their integer and float
+parameters (`con_i`, `con_f`):
+  CON_REVOLUTE   points i0, i1 coincide                         (2 rows)
+  CON_PRISMATIC  rigid body at offset i0 slides along a ground guide through
+                 (f0, f1) with direction angle f2; its body x axis along the
+                 guide and its centre on the guide line                (2 rows)
+  CON_DRIVE      coordinate i0 equals f0 + f1 t (prescribed angle)       (1 row)
+  CON_CLAMP      rigid body at offset i0 held at (f0, f1, f2)            (3 rows)
+  CON_CLAMP_NODE beam node at offset i0 held at position (f0, f1) and slope
+                 (cos f2, sin f2)                                      (4 rows)
+  CON_WELD       points i0, i1 coincide and the two rigid bodies keep the
+                 relative angle f0 (body offsets in i2, i3)             (3 rows)
+"""
+
+from typing import NamedTuple
+
+import numpy as np
+
+POINT_GROUND, POINT_RIGID, POINT_NODE = 0, 1, 2
+
+CON_REVOLUTE, CON_PRISMATIC, CON_DRIVE, CON_CLAMP, CON_CLAMP_NODE, CON_WELD = range(6)
+CON_ROWS = (2, 2, 1, 3, 4, 3)
+
+# Column layout of the per-joint contact outputs written by the force kernels.
+OUT_PENETRATION, OUT_NORMAL_FORCE, OUT_FRICTION_FORCE, OUT_STATE, OUT_RATE = range(5)
+N_JOINT_OUT = 5
+
+# Contact law parameters, indices into System.contact.
+CT_RESTITUTION, CT_FRICTION, CT_V0, CT_V1, CT_MIN_IMPACT_SPEED, CT_EXPONENT, CT_SLIDER_LAW = range(7)
+# Slider–guide contact laws (contact.slider_law).
+SLIDER_LAW_PAPER, SLIDER_LAW_WINKLER = 0, 1
+SLIDER_LAWS = {"paper": SLIDER_LAW_PAPER, "winkler": SLIDER_LAW_WINKLER}
+
+# Translational clearance joint float parameters, indices into System.tj_f.
+TJ_PX, TJ_PY, TJ_ANGLE, TJ_LENGTH, TJ_WIDTH, TJ_GAP_WIDTH, TJ_K_FACE, TJ_K_CORNER = range(8)
+# Revolute clearance joint float parameters, indices into System.rj_f.
+RJ_BEARING_RADIUS, RJ_JOURNAL_RADIUS, RJ_CLEARANCE, RJ_STIFFNESS = range(4)
+# Beam float parameters, indices into System.beam_f.
+BM_ELEMENT_LENGTH, BM_EA, BM_EI, BM_DAMPING = range(4)
+
+CORNERS_PER_SLIDER = 4
+GAPS_PER_SLIDER = 8  # four corners, each against both walls
+
+
+class System(NamedTuple):
+    """Arrays describing one planar multibody system (see the module docstring)."""
+
+    n: int  # generalized coordinates
+    m: int  # constraint equations
+    mass: np.ndarray  # (n, n) constant mass matrix M
+    mass_inv: np.ndarray  # (n, n) M⁻¹, block diagonal
+    blk_start: np.ndarray  # (nb,) first coordinate of each mass block
+    blk_end: np.ndarray  # (nb,) one past the last coordinate of each block
+    gravity_force: np.ndarray  # (n,) constant generalized gravity force Q_g
+    pt_kind: np.ndarray  # (np,) point kinds
+    pt_off: np.ndarray  # (np,) coordinate offset of the owning body or node
+    pt_u: np.ndarray  # (np, 2) body-frame vector or ground position, m
+    con_type: np.ndarray  # (nc,)
+    con_row: np.ndarray  # (nc,) first row of each constraint
+    con_i: np.ndarray  # (nc, 4) integer parameters
+    con_f: np.ndarray  # (nc, 3) float parameters
+    baumgarte: np.ndarray  # (2,) α and β of the Baumgarte stabilisation, 1/s
+    drive_row: int  # row of the drive constraint, -1 if none
+    drive_coord: int  # coordinate the drive prescribes, -1 if none
+    rj_pts: np.ndarray  # (nr, 2) bearing and journal point of each revolute clearance
+    rj_f: np.ndarray  # (nr, 4) radii, clearance (m), Hertz stiffness (N/m^1.5)
+    tj_off: np.ndarray  # (nt,) slider body offset of each translational clearance
+    tj_f: np.ndarray  # (nt, 8) guide and slider geometry, face and corner stiffness
+    contact: np.ndarray  # (7,) contact law parameters
+    beam_off: np.ndarray  # (nbm,) first coordinate of each beam
+    beam_nel: np.ndarray  # (nbm,) elements per beam
+    beam_f: np.ndarray  # (nbm, 4) element length, EA, EI, damping coefficient
+    ref_idx: np.ndarray  # (nbody, 4) coordinates combined into each reference point
+    ref_coef: np.ndarray  # (nbody, 4) their coefficients (shape functions)
+    ang_idx: np.ndarray  # (nbody, 2) angle coordinate (rigid) or chord nodes (beam)
+    body_is_beam: np.ndarray  # (nbody,) 1 for beams
+
+
+def n_gaps(system: System) -> int:
+    """Number of monitored contact gaps (one per revolute clearance, eight per slider)."""
+    return system.rj_pts.shape[0] + GAPS_PER_SLIDER * system.tj_off.shape[0]
+
+
+def n_clearance_joints(system: System) -> int:
+    """Number of clearance joints (revolute first, then translational)."""
+    return system.rj_pts.shape[0] + system.tj_off.shape[0]

@@ -1,0 +1,206 @@
+"""Simulation output as a CF-annotated xarray Dataset, and its netCDF file.
+
+Every variable carries `units` and `long_name`; global attributes hold the
+resolved scene (JSON text), the version and the solver statistics, so that an
+output file says what made it (CF conventions 1.8).
+"""
+
+import json
+import os
+import tempfile
+from pathlib import Path
+
+import numpy as np
+import xarray as xr
+
+from sim import __version__
+from sim.solve.record import column_layout
+
+AXES = ["x", "y"]
+
+# name: (units, long_name)
+ATTRS = {
+    "time": ("s", "time since the start of the simulation"),
+    "revolution": ("1", "crank revolutions completed at the section"),
+    "crank_angle": ("rad", "crank angle from +x, counter-clockwise"),
+    "position": ("m", "position of the body's reference point"),
+    "velocity": ("m s-1", "velocity of the body's reference point"),
+    "acceleration": ("m s-2", "acceleration of the body's reference point"),
+    "angle": ("rad", "body angle (beams: angle of the chord between end nodes)"),
+    "drive_torque": ("N m", "driving torque applied to the crank"),
+    "eccentricity": ("m", "journal centre minus bearing centre; slider: x across, y along guide"),
+    "eccentricity_rate": ("m s-1", "rate of the eccentricity"),
+    "penetration": ("m", "contact penetration depth (deepest, zero when apart)"),
+    "normal_force": ("N", "contact normal force (sum over contact points)"),
+    "friction_force": ("N", "contact friction force along the tangent (sum over contact points)"),
+    "in_contact": ("1", "contact state: 0 apart, 1 point contact, 2 face contact"),
+    "constraint_violation": ("m", "Euclidean norm of the ideal constraint residuals"),
+    "kinetic_energy": ("J", "kinetic energy"),
+    "potential_energy": ("J", "gravitational potential energy"),
+    "strain_energy": ("J", "elastic strain energy of the beams"),
+    "contact_energy": ("J", "elastic energy stored in contact deformation"),
+    "drive_work": ("J", "work done by the drive since the start"),
+    "dissipated_energy": ("J", "energy dissipated by contact damping and friction since the start"),
+    "energy_error": ("J", "energy balance residual T+V+U+U_c-W+D minus its initial value"),
+    "section_eccentricity": ("m", "eccentricity at each crank revolution (Poincare section)"),
+    "section_eccentricity_rate": ("m s-1", "eccentricity rate at each crank revolution"),
+    "section_position": ("m", "reference point position at each crank revolution"),
+    "section_velocity": ("m s-1", "reference point velocity at each crank revolution"),
+    "peak_acceleration": ("m s-2", "largest |acceleration| over every accepted step and sample"),
+    "peak_drive_torque": ("N m", "largest |driving torque| over every accepted step and sample"),
+    "peak_normal_force": ("N", "largest contact normal force over every accepted step and sample"),
+}
+
+DIMS = {
+    "crank_angle": ("time",),
+    "position": ("time", "body", "axis"),
+    "velocity": ("time", "body", "axis"),
+    "acceleration": ("time", "body", "axis"),
+    "angle": ("time", "body"),
+    "drive_torque": ("time",),
+    "eccentricity": ("time", "joint", "axis"),
+    "eccentricity_rate": ("time", "joint", "axis"),
+    "penetration": ("time", "joint"),
+    "normal_force": ("time", "joint"),
+    "friction_force": ("time", "joint"),
+    "in_contact": ("time", "joint"),
+    "constraint_violation": ("time",),
+    "kinetic_energy": ("time",),
+    "potential_energy": ("time",),
+    "strain_energy": ("time",),
+    "contact_energy": ("time",),
+    "drive_work": ("time",),
+    "dissipated_energy": ("time",),
+}
+RENAMED = {"contact_state": "in_contact"}
+SECTIONS = {
+    "section_eccentricity": "eccentricity",
+    "section_eccentricity_rate": "eccentricity_rate",
+    "section_position": "position",
+    "section_velocity": "velocity",
+}
+
+
+def _decode(rows: np.ndarray, bodies: list[str], joints: list[str]) -> dict[str, np.ndarray]:
+    """Column blocks of sample rows → arrays shaped (samples, ...)."""
+    out = {}
+    for name, (first, shape) in column_layout(len(bodies), len(joints)).items():
+        width = int(np.prod(shape, dtype=int))
+        out[RENAMED.get(name, name)] = rows[:, first : first + width].reshape((rows.shape[0], *shape))
+    return out
+
+
+def energy_balance(ds: xr.Dataset) -> xr.DataArray:
+    """T + V + U + U_c − W + D minus its initial value (J): zero up to numerical error."""
+    total = (
+        ds.kinetic_energy
+        + ds.potential_energy
+        + ds.strain_energy
+        + ds.contact_energy
+        - ds.drive_work
+        + ds.dissipated_energy
+    )
+    return total - total.isel(time=0)
+
+
+def energy_scale(ds: xr.Dataset) -> float:
+    """The energy the audit is judged against (J): the largest of the kinetic
+    energy, the potential energy's range and the drive's work."""
+    return float(
+        max(
+            ds.kinetic_energy.max(),
+            ds.potential_energy.max() - ds.potential_energy.min(),
+            abs(ds.drive_work).max(),
+            1e-12,
+        )
+    )
+
+
+def build_dataset(
+    *,
+    times: np.ndarray,
+    rows: np.ndarray,
+    section_rows: np.ndarray,
+    peaks: np.ndarray,
+    bodies: list[str],
+    joints: list[str],
+    scene: dict,
+    provenance: dict,
+) -> xr.Dataset:
+    """The output Dataset of one run from the integrator's sample rows."""
+    data = _decode(rows, bodies, joints)
+    sections = _decode(section_rows, bodies, joints)
+    coords = {
+        "time": times,
+        "body": bodies,
+        "axis": AXES,
+        "joint": joints,
+        "revolution": np.arange(section_rows.shape[0]),
+    }
+    ds = xr.Dataset(coords=coords)
+    for name, dims in DIMS.items():
+        ds[name] = (dims, data[name])
+    for name, source in SECTIONS.items():
+        ds[name] = (("revolution", *DIMS[source][1:]), sections[source])
+    nb = len(bodies)
+    step_acc = peaks[: 2 * nb].reshape(nb, 2)
+    ds["peak_acceleration"] = (
+        ("body", "axis"),
+        np.maximum(step_acc, np.abs(data["acceleration"]).max(axis=0)),
+    )
+    ds["peak_drive_torque"] = ((), max(peaks[2 * nb], float(np.abs(data["drive_torque"]).max())))
+    ds["peak_normal_force"] = (
+        ("joint",),
+        np.maximum(peaks[2 * nb + 1 :], data["normal_force"].max(axis=0, initial=0.0)),
+    )
+    ds["energy_error"] = energy_balance(ds)
+    for name, (units, long_name) in ATTRS.items():
+        if name in ds.variables:
+            ds[name].attrs.update(units=units, long_name=long_name)
+    ds["axis"].attrs["long_name"] = "component (global x, y; translational joints: across, along)"
+    ds["body"].attrs["long_name"] = "body name"
+    ds["joint"].attrs["long_name"] = "clearance joint name"
+    ds.attrs.update(
+        Conventions="CF-1.8",
+        title=f"sim run of scene '{scene['name']}'",
+        source=f"sim {__version__}",
+        history=provenance.pop("history"),
+        scene=json.dumps(scene),
+        assumptions=json.dumps(scene.get("assumptions", [])),
+        sim_version=__version__,
+        energy_error_relative=float(np.abs(ds.energy_error).max()) / energy_scale(ds),
+        **provenance,
+    )
+    return ds
+
+
+def encoding_for(ds: xr.Dataset) -> dict:
+    """float32 + zlib for the long time series, no fill value on coordinates."""
+    enc = {}
+    for name, var in ds.variables.items():
+        if name in ds.coords:
+            enc[name] = {"_FillValue": None}
+        elif "time" in var.dims and var.dtype.kind == "f":
+            enc[name] = {"dtype": "float32", "zlib": True, "complevel": 4}
+    return enc
+
+
+def write_netcdf(ds: xr.Dataset, path: str | os.PathLike) -> Path:
+    """Write `ds` to `path` through a temporary file in the same folder, then
+    rename, so that a crash never leaves a half-written file under that name."""
+    path = Path(path)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
+    os.close(fd)
+    try:
+        ds.to_netcdf(tmp, encoding=encoding_for(ds), engine="netcdf4")
+        os.replace(tmp, path)
+    finally:
+        if os.path.exists(tmp):
+            os.remove(tmp)
+    return path
+
+
+def scene_of(ds: xr.Dataset) -> dict:
+    """The resolved scene a run was made from."""
+    return json.loads(ds.attrs["scene"])

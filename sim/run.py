@@ -1,0 +1,276 @@
+"""Run one scene: assemble, integrate, collect the output Dataset.
+
+`simulate` is the library entry point (`sim run` and the workflow call it).
+"""
+
+import datetime
+import math
+import sys
+import time
+from dataclasses import dataclass
+
+import numpy as np
+import xarray as xr
+
+from sim.model.assembly import Layout, build_system, crank_period
+from sim.model.initial import initial_state
+from sim.model.system import (
+    CT_SLIDER_LAW,
+    RJ_JOURNAL_RADIUS,
+    SLIDER_LAW_PAPER,
+    TJ_WIDTH,
+    System,
+    n_gaps,
+)
+from sim.results import build_dataset
+from sim.solve import dopri
+from sim.solve.dae import NONFINITE, SINGULAR, make_work, state_size
+from sim.solve.record import record_row, row_width
+
+
+class SimulationError(RuntimeError):
+    """A run that cannot go on: the message names the time, the joint and a diagnosis."""
+
+
+# Sane bounds, as fractions of the joint's own size: a penetration beyond them
+# means a contact far too soft or a step far too large, not a physical state.
+PENETRATION_BOUND = 0.02  # of the journal radius or the slider width
+VIOLATION_BOUND = 0.01  # of the shortest body dimension, m
+
+
+@dataclass
+class Integration:
+    """Everything the compiled integrator reads and writes for one run."""
+
+    system: System
+    layout: Layout
+    work: object
+    mem: np.ndarray
+    y: np.ndarray
+    st: np.ndarray
+    opts: np.ndarray
+    out_t: np.ndarray
+    out_rows: np.ndarray
+    sec_t: np.ndarray
+    sec_rows: np.ndarray
+    peaks: np.ndarray
+    pen_bound: np.ndarray
+    stats: np.ndarray
+    diag: np.ndarray
+
+    def advance(self, t_end: float) -> int:
+        """Integrate up to t_end; the status code of the compiled integrator."""
+        return dopri.integrate(
+            self.system,
+            self.work,
+            self.mem,
+            self.y,
+            self.st,
+            t_end,
+            self.opts,
+            self.out_t,
+            self.out_rows,
+            self.sec_t,
+            self.sec_rows,
+            self.peaks,
+            self.pen_bound,
+            self.stats,
+            self.diag,
+        )
+
+
+def _shortest_dimension(scene: dict) -> float:
+    sizes = []
+    for body in scene["bodies"].values():
+        sizes += [body["length"]] if body["shape"] == "bar" else body["size"][:2]
+    return min(sizes)
+
+
+def prepare(
+    scene: dict, *, ideal: bool = False, rigid: bool = False, revolutions: float | None = None
+) -> Integration:
+    """Assemble the system, its initial state and the output buffers."""
+    system, layout = build_system(scene, ideal=ideal, rigid=rigid)
+    q0, qd0 = initial_state(scene, system, layout)
+    y = np.concatenate([q0, qd0, [0.0, 0.0]])
+    period = crank_period(scene)
+    n_rev = scene["simulation"]["revolutions"] if revolutions is None else revolutions
+    per_rev = scene["simulation"]["output_per_revolution"]
+    n_out = int(math.floor(n_rev * per_rev + 1e-9)) + 1
+    out_t = np.arange(n_out) * (period / per_rev)
+    sec_t = np.arange(int(math.floor(n_rev + 1e-9)) + 1) * period
+    width = row_width(len(layout.bodies), len(layout.clearance_joints))
+    solver = scene["solver"]
+    opts = np.zeros(dopri.N_OPTS)
+    opts[dopri.OPT_RTOL] = solver["rtol"]
+    opts[dopri.OPT_ATOL] = solver["atol"]
+    opts[dopri.OPT_HMAX] = solver["max_step_fraction"] * period
+    opts[dopri.OPT_HMIN] = 1e-14 * period
+    opts[dopri.OPT_VIOLATION_BOUND] = VIOLATION_BOUND * _shortest_dimension(scene)
+    opts[dopri.OPT_MAX_STEPS] = solver["max_steps"]
+    pen_bound = np.concatenate(
+        [
+            PENETRATION_BOUND * system.rj_f[:, RJ_JOURNAL_RADIUS],
+            PENETRATION_BOUND * system.tj_f[:, TJ_WIDTH],
+        ]
+    )
+    st = np.zeros(dopri.N_ST)
+    st[dopri.ST_H] = min(1e-5 * period, opts[dopri.OPT_HMAX])
+    st[dopri.ST_FACOLD] = 1e-4
+    integ = Integration(
+        system=system,
+        layout=layout,
+        work=make_work(system),
+        mem=np.zeros((n_gaps(system), 3)),
+        y=y,
+        st=st,
+        opts=opts,
+        out_t=out_t,
+        out_rows=np.zeros((n_out, width)),
+        sec_t=sec_t,
+        sec_rows=np.zeros((sec_t.size, width)),
+        peaks=np.zeros(2 * len(layout.bodies) + 1 + len(layout.clearance_joints)),
+        pen_bound=pen_bound,
+        stats=np.zeros(dopri.N_STATS, dtype=np.int64),
+        diag=np.zeros(2),
+    )
+    # The integrator samples times in (t, t + h]; t = 0 is recorded here.
+    assert state_size(system) == y.size
+    for rows, slot in ((integ.out_rows, dopri.S_OUT), (integ.sec_rows, dopri.S_SEC)):
+        record_row(system, integ.work, integ.mem, 0.0, y, rows[0])
+        integ.stats[slot] = 1
+    return integ
+
+
+def diagnose(integ: Integration, status: int) -> str:
+    """A failure message: the time, the joint and the likely cause."""
+    t = integ.diag[dopri.D_TIME]
+    joints = integ.layout.clearance_joints
+    jout = integ.work.jout
+    busiest = joints[int(np.argmax(jout[:, 1]))] if len(joints) else None
+    at = f"at t = {t:.6g} s"
+    if status == dopri.PENETRATION:
+        j = int(integ.stats[dopri.S_CULPRIT])
+        hint = ""
+        is_slider = j >= integ.system.rj_pts.shape[0]
+        if is_slider and integ.system.contact[CT_SLIDER_LAW] == SLIDER_LAW_PAPER:
+            hint = (
+                "; the paper's slider law switches from a corner to the face law with a jump "
+                "in stored energy that feeds the slider's rattle: contact.slider_law=winkler "
+                "is the continuous, energy-consistent form of the same face law"
+            )
+        return (
+            f"{at}: joint '{joints[j]}' penetrates {jout[j, 0]:.3g} m, beyond the sane bound "
+            f"{integ.pen_bound[j]:.3g} m ({PENETRATION_BOUND:.0%} of its size): the contact is too "
+            f"soft for the load, or the clearance law met a velocity it cannot stop{hint}"
+        )
+    if status == dopri.VIOLATION:
+        return (
+            f"{at}: ideal constraints drifted beyond {integ.opts[dopri.OPT_VIOLATION_BOUND]:.3g} m; "
+            "the mechanism may pass a singular (locked) position; raise solver.baumgarte_* or "
+            "tighten solver.rtol"
+        )
+    if status == dopri.STEP_COLLAPSE:
+        where = f"; the largest contact force is at joint '{busiest}'" if busiest else ""
+        return (
+            f"{at}: the step size collapsed below {integ.opts[dopri.OPT_HMIN]:.3g} s{where}: "
+            "a force discontinuity or stiffness the explicit method cannot pass"
+        )
+    if status == SINGULAR:
+        return (
+            f"{at}: the constraint Jacobian lost rank: redundant joints or a locked "
+            "(singular) position of the linkage"
+        )
+    if status == NONFINITE:
+        where = f" (largest contact force at joint '{busiest}')" if busiest else ""
+        return f"{at}: the state became non-finite{where}: the step outran a stiff force"
+    if status == dopri.MAX_STEPS:
+        return f"{at}: solver.max_steps = {int(integ.opts[dopri.OPT_MAX_STEPS])} reached"
+    return f"{at}: integrator status {status}"
+
+
+class Progress:
+    """One status line on stderr: simulated time, share done, time left."""
+
+    def __init__(self, t_end: float, enabled: bool):
+        self.t_end = t_end
+        self.enabled = enabled
+        self.start = time.perf_counter()
+
+    def update(self, t: float) -> None:
+        if not self.enabled:
+            return
+        wall = time.perf_counter() - self.start
+        share = t / self.t_end if self.t_end > 0 else 1.0
+        left = wall * (1.0 - share) / share if share > 0 else float("nan")
+        sys.stderr.write(
+            f"\r  t = {t:9.4f} s of {self.t_end:.4f} s  {100 * share:5.1f} %  "
+            f"elapsed {wall:6.1f} s  left ~{left:6.1f} s "
+        )
+        sys.stderr.flush()
+
+    def close(self) -> None:
+        if self.enabled:
+            sys.stderr.write("\n")
+
+
+def simulate(
+    scene: dict,
+    *,
+    progress: bool = False,
+    ideal: bool = False,
+    rigid: bool = False,
+    revolutions: float | None = None,
+) -> xr.Dataset:
+    """Simulate a validated scene and return its output Dataset.
+
+    ideal / rigid replace every clearance joint by an ideal one / every beam by a
+    rigid link (the reference mechanism); `revolutions` overrides the duration."""
+    integ = prepare(scene, ideal=ideal, rigid=rigid, revolutions=revolutions)
+    period = crank_period(scene)
+    n_rev = scene["simulation"]["revolutions"] if revolutions is None else revolutions
+    t_end = n_rev * period
+    bar = Progress(t_end, progress)
+    wall0 = time.perf_counter()
+    chunk = period / 4.0
+    t = 0.0
+    while t < t_end:
+        t = min(t + chunk, t_end)
+        status = integ.advance(t)
+        if status != dopri.OK:
+            bar.close()
+            raise SimulationError(f"scene '{scene['name']}': " + diagnose(integ, status))
+        bar.update(t)
+    bar.close()
+    wall = time.perf_counter() - wall0
+    recorded = (int(integ.stats[dopri.S_OUT]), int(integ.stats[dopri.S_SEC]))
+    if recorded != (integ.out_t.size, integ.sec_t.size):
+        raise SimulationError(
+            f"scene '{scene['name']}': the integrator recorded {recorded} of "
+            f"{(integ.out_t.size, integ.sec_t.size)} samples and sections"
+        )
+    stats = integ.stats
+    provenance = {
+        "history": f"{datetime.datetime.now(datetime.UTC).isoformat()} sim simulate",
+        "crank_period": period,
+        "model_ideal": int(ideal),
+        "model_rigid": int(rigid),
+        "solver_method": scene["solver"]["method"],
+        "solver_accepted_steps": int(stats[dopri.S_ACCEPTED]),
+        "solver_rejected_steps": int(stats[dopri.S_REJECTED]),
+        "solver_function_evaluations": int(stats[dopri.S_NFEV]),
+        "solver_contact_events": int(stats[dopri.S_EVENTS]),
+        "solver_wall_time_s": wall,
+        "real_time_factor": t_end / wall if wall > 0 else float("inf"),
+        "simulated_time_s": t_end,
+    }
+    return build_dataset(
+        times=integ.out_t,
+        rows=integ.out_rows,
+        section_rows=integ.sec_rows,
+        peaks=integ.peaks,
+        bodies=integ.layout.bodies,
+        joints=integ.layout.clearance_joints,
+        scene=scene,
+        provenance=provenance,
+    )

@@ -1,0 +1,211 @@
+"""The equations of motion as a first-order system for the integrator.
+
+Lagrange multiplier form with Baumgarte stabilisation (Baumgarte, Comput. Meth.
+Appl. Mech. Eng. 1, 1972; Nikravesh 1988, ch. 13):
+
+    [ M   Φ_qᵀ ] [ q̈ ]   [ Q                         ]
+    [ Φ_q  0   ] [ λ  ] = [ γ − 2α(Φ_q q̇ − ν) − β² Φ ]
+
+Q collects gravity, contact and (negative) elastic forces. M is constant and
+block diagonal, so the system is solved through the Schur complement
+S = Φ_q M⁻¹ Φ_qᵀ (small, symmetric positive definite when Φ_q has full row rank):
+S λ = Φ_q M⁻¹ Q − b, then q̈ = M⁻¹ (Q − Φ_qᵀ λ).
+
+State y = (q, q̇, W_drive, E_dissipated): the last two are quadratures of the
+drive power τ θ̇ and of the dissipated power, integrated with the motion so that
+the energy audit uses the integrator's own accuracy.
+"""
+
+from typing import NamedTuple
+
+import numba
+import numpy as np
+
+from sim.model.beams import beam_forces
+from sim.model.clearance import revolute_clearance_forces, translational_clearance_forces
+from sim.model.constraints import constraint_terms
+from sim.model.system import N_JOINT_OUT, System, n_clearance_joints, n_gaps
+from sim.solve.linalg import cholesky_in_place, cholesky_solve_in_place
+
+# Status codes of a right-hand side evaluation and of the integrator.
+OK, SINGULAR, NONFINITE = 0, 1, 2
+
+# Scalars a right-hand side evaluation leaves behind, indices into Work.scalars.
+SC_DRIVE_TORQUE, SC_DISSIPATED_POWER, SC_CONTACT_ENERGY, SC_STRAIN_ENERGY = range(4)
+
+
+class Work(NamedTuple):
+    """Scratch arrays owned by one simulation; the compiled loop allocates nothing."""
+
+    phi: np.ndarray  # (m,) constraint values
+    jac: np.ndarray  # (m, n) Φ_q
+    gamma: np.ndarray  # (m,)
+    nu: np.ndarray  # (m,)
+    rhs: np.ndarray  # (m,) Schur right-hand side, then λ
+    gen: np.ndarray  # (n,) generalized forces Q
+    minv_gen: np.ndarray  # (n,) M⁻¹ Q
+    minv_jt: np.ndarray  # (n, m) M⁻¹ Φ_qᵀ
+    schur: np.ndarray  # (m, m)
+    qdd: np.ndarray  # (n,)
+    jout: np.ndarray  # (joints, N_JOINT_OUT) per clearance joint outputs
+    scalars: np.ndarray  # (4,) see SC_*
+    beam_work: np.ndarray  # (n,) scratch for beam forces
+    stages: np.ndarray  # (7, ny) Runge–Kutta stages
+    ytmp: np.ndarray  # (ny,)
+    ynew: np.ndarray  # (ny,)
+    yint: np.ndarray  # (ny,) interpolated state of an output sample
+    dense: np.ndarray  # (5, ny) dense-output coefficients of the last step
+    gaps: np.ndarray  # (ngaps,)
+
+
+def state_size(system: System) -> int:
+    """Length of y: q, q̇ and the two energy quadratures."""
+    return 2 * system.n + 2
+
+
+def make_work(system: System) -> Work:
+    """Allocate the scratch arrays for `system`."""
+    n, m, ny = system.n, system.m, state_size(system)
+    return Work(
+        phi=np.zeros(m),
+        jac=np.zeros((m, n)),
+        gamma=np.zeros(m),
+        nu=np.zeros(m),
+        rhs=np.zeros(m),
+        gen=np.zeros(n),
+        minv_gen=np.zeros(n),
+        minv_jt=np.zeros((n, m)),
+        schur=np.zeros((m, m)),
+        qdd=np.zeros(n),
+        jout=np.zeros((n_clearance_joints(system), N_JOINT_OUT)),
+        scalars=np.zeros(4),
+        beam_work=np.zeros(n),
+        stages=np.zeros((7, ny)),
+        ytmp=np.zeros(ny),
+        ynew=np.zeros(ny),
+        yint=np.zeros(ny),
+        dense=np.zeros((5, ny)),
+        gaps=np.zeros(n_gaps(system)),
+    )
+
+
+@numba.njit(cache=True)
+def _minv_times(sys, x: np.ndarray, out: np.ndarray) -> None:
+    """out = M⁻¹ x, one mass block at a time."""
+    for b in range(sys.blk_start.shape[0]):
+        s = sys.blk_start[b]
+        e = sys.blk_end[b]
+        for i in range(s, e):
+            acc = 0.0
+            for k in range(s, e):
+                acc += sys.mass_inv[i, k] * x[k]
+            out[i] = acc
+
+
+@numba.njit(cache=True)
+def generalized_forces(sys, work, t: float, q: np.ndarray, qd: np.ndarray, mem: np.ndarray) -> None:
+    """Q = gravity + contact − elastic − damping forces into work.gen; the
+    dissipated power and stored energies into work.scalars."""
+    gen = work.gen
+    gen[:] = sys.gravity_force
+    pr, ur = revolute_clearance_forces(sys, q, qd, mem, gen, work.jout)
+    pt, ut = translational_clearance_forces(sys, q, qd, mem, gen, work.jout)
+    pb, us = beam_forces(sys, q, qd, gen, work.beam_work)
+    work.scalars[SC_DISSIPATED_POWER] = pr + pt + pb
+    work.scalars[SC_CONTACT_ENERGY] = ur + ut
+    work.scalars[SC_STRAIN_ENERGY] = us
+
+
+@numba.njit(cache=True)
+def rhs(sys, work, mem: np.ndarray, t: float, y: np.ndarray, ydot: np.ndarray) -> int:
+    """ẏ = f(t, y); returns OK, SINGULAR (constraint Jacobian lost rank) or NONFINITE."""
+    n = sys.n
+    m = sys.m
+    q = y[:n]
+    qd = y[n : 2 * n]
+    generalized_forces(sys, work, t, q, qd, mem)
+    _minv_times(sys, work.gen, work.minv_gen)
+    qdd = work.qdd
+    if m > 0:
+        jac = work.jac
+        constraint_terms(sys, t, q, qd, work.phi, jac, work.gamma, work.nu)
+        alpha = sys.baumgarte[0]
+        beta = sys.baumgarte[1]
+        b = work.rhs
+        for i in range(m):
+            vel = -work.nu[i]
+            acc = 0.0
+            for k in range(n):
+                vel += jac[i, k] * qd[k]
+                acc += jac[i, k] * work.minv_gen[k]
+            b[i] = acc - (work.gamma[i] - 2.0 * alpha * vel - beta * beta * work.phi[i])
+        y_mt = work.minv_jt
+        for blk in range(sys.blk_start.shape[0]):
+            s = sys.blk_start[blk]
+            e = sys.blk_end[blk]
+            for i in range(s, e):
+                for r in range(m):
+                    acc = 0.0
+                    for k in range(s, e):
+                        acc += sys.mass_inv[i, k] * jac[r, k]
+                    y_mt[i, r] = acc
+        schur = work.schur
+        for i in range(m):
+            for j in range(i + 1):
+                acc = 0.0
+                for k in range(n):
+                    acc += jac[i, k] * y_mt[k, j]
+                schur[i, j] = acc
+                schur[j, i] = acc
+        if not cholesky_in_place(schur, m):
+            return SINGULAR
+        cholesky_solve_in_place(schur, m, b)
+        for i in range(n):
+            acc = work.minv_gen[i]
+            for r in range(m):
+                acc -= y_mt[i, r] * b[r]
+            qdd[i] = acc
+    else:
+        qdd[:] = work.minv_gen
+    torque = 0.0
+    drive_power = 0.0
+    if sys.drive_row >= 0:
+        # The drive row of Φ_q is the unit vector of the driven angle, so its
+        # constraint force on that coordinate is −λ: the motor's torque.
+        torque = -work.rhs[sys.drive_row]
+        drive_power = torque * qd[sys.drive_coord]
+    work.scalars[SC_DRIVE_TORQUE] = torque
+    ydot[:n] = qd
+    ydot[n : 2 * n] = qdd
+    ydot[2 * n] = drive_power
+    ydot[2 * n + 1] = work.scalars[SC_DISSIPATED_POWER]
+    for i in range(2 * n + 2):
+        if not np.isfinite(ydot[i]):
+            return NONFINITE
+    return OK
+
+
+@numba.njit(cache=True)
+def kinetic_energy(sys, qd: np.ndarray) -> float:
+    """T = ½ q̇ᵀ M q̇ (J)."""
+    total = 0.0
+    for b in range(sys.blk_start.shape[0]):
+        s = sys.blk_start[b]
+        e = sys.blk_end[b]
+        for i in range(s, e):
+            acc = 0.0
+            for k in range(s, e):
+                acc += sys.mass[i, k] * qd[k]
+            total += qd[i] * acc
+    return 0.5 * total
+
+
+@numba.njit(cache=True)
+def potential_energy(sys, q: np.ndarray) -> float:
+    """Gravitational potential V = −Q_gᵀ q (J): gravity is uniform, so its
+    generalized force is constant and V is linear in q for rigid bodies and
+    ANCF beams alike."""
+    total = 0.0
+    for i in range(sys.n):
+        total -= sys.gravity_force[i] * q[i]
+    return total

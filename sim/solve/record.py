@@ -1,0 +1,142 @@
+"""One output sample: every reported quantity at (t, y), as one row of floats.
+
+The column order is defined once, by `column_layout`, and followed by
+`record_row`; `sim.results` decodes rows with the same layout.
+"""
+
+import numba
+import numpy as np
+
+from sim.model.clearance import eccentricity, eccentricity_rate, guide_frame
+from sim.model.system import (
+    OUT_FRICTION_FORCE,
+    OUT_NORMAL_FORCE,
+    OUT_PENETRATION,
+    OUT_STATE,
+    TJ_PX,
+    TJ_PY,
+)
+from sim.solve.dae import (
+    SC_CONTACT_ENERGY,
+    SC_DRIVE_TORQUE,
+    SC_STRAIN_ENERGY,
+    kinetic_energy,
+    potential_energy,
+    rhs,
+)
+
+
+def column_layout(n_bodies: int, n_joints: int) -> dict[str, tuple[int, tuple[int, ...]]]:
+    """Name → (first column, shape per sample) of every recorded quantity, in the
+    order `record_row` writes them."""
+    shapes = {
+        "crank_angle": (),
+        "position": (n_bodies, 2),
+        "velocity": (n_bodies, 2),
+        "acceleration": (n_bodies, 2),
+        "angle": (n_bodies,),
+        "drive_torque": (),
+        "eccentricity": (n_joints, 2),
+        "eccentricity_rate": (n_joints, 2),
+        "penetration": (n_joints,),
+        "normal_force": (n_joints,),
+        "friction_force": (n_joints,),
+        "contact_state": (n_joints,),
+        "constraint_violation": (),
+        "kinetic_energy": (),
+        "potential_energy": (),
+        "strain_energy": (),
+        "contact_energy": (),
+        "drive_work": (),
+        "dissipated_energy": (),
+    }
+    layout = {}
+    col = 0
+    for name, shape in shapes.items():
+        layout[name] = (col, shape)
+        col += int(np.prod(shape, dtype=int))
+    return layout
+
+
+def row_width(n_bodies: int, n_joints: int) -> int:
+    """Number of columns of one sample row."""
+    layout = column_layout(n_bodies, n_joints)
+    first, _ = layout["dissipated_energy"]
+    return first + 1
+
+
+@numba.njit(cache=True)
+def reference_point(sys, b: int, x: np.ndarray, axis: int) -> float:
+    """Component `axis` of body b's reference point, applied to q, q̇ or q̈ (x)."""
+    acc = 0.0
+    for k in range(4):
+        acc += sys.ref_coef[b, k] * x[sys.ref_idx[b, k] + axis]
+    return acc
+
+
+@numba.njit(cache=True)
+def record_row(sys, work, mem: np.ndarray, t: float, y: np.ndarray, row: np.ndarray) -> int:
+    """Evaluate the model at (t, y) and write one sample row; returns the
+    right-hand side status."""
+    n = sys.n
+    status = rhs(sys, work, mem, t, y, work.ytmp)
+    q = y[:n]
+    qd = y[n : 2 * n]
+    nb = sys.ref_idx.shape[0]
+    c = 0
+    row[c] = q[sys.drive_coord] if sys.drive_coord >= 0 else 0.0
+    c += 1
+    for src in range(3):
+        x = q if src == 0 else (qd if src == 1 else work.qdd)
+        for b in range(nb):
+            for a in range(2):
+                row[c] = reference_point(sys, b, x, a)
+                c += 1
+    for b in range(nb):
+        i0 = sys.ang_idx[b, 0]
+        if sys.body_is_beam[b] == 1:
+            i1 = sys.ang_idx[b, 1]
+            row[c] = np.arctan2(q[i1 + 1] - q[i0 + 1], q[i1] - q[i0])
+        else:
+            row[c] = q[i0]
+        c += 1
+    row[c] = work.scalars[SC_DRIVE_TORQUE]
+    c += 1
+    nr = sys.rj_pts.shape[0]
+    nj = nr + sys.tj_off.shape[0]
+    for j in range(nj):
+        if j < nr:
+            ex, ey = eccentricity(sys, j, q)
+            vx, vy = eccentricity_rate(sys, j, q, qd)
+        else:
+            # Slider centre relative to the guide's point: x across, y along.
+            k = j - nr
+            o = sys.tj_off[k]
+            tx, ty, nx, ny = guide_frame(sys, k)
+            dx = q[o] - sys.tj_f[k, TJ_PX]
+            dy = q[o + 1] - sys.tj_f[k, TJ_PY]
+            ex = dx * nx + dy * ny
+            ey = dx * tx + dy * ty
+            vx = qd[o] * nx + qd[o + 1] * ny
+            vy = qd[o] * tx + qd[o + 1] * ty
+        row[c + 2 * j] = ex
+        row[c + 2 * j + 1] = ey
+        row[c + 2 * nj + 2 * j] = vx
+        row[c + 2 * nj + 2 * j + 1] = vy
+    c += 4 * nj
+    for out in (OUT_PENETRATION, OUT_NORMAL_FORCE, OUT_FRICTION_FORCE, OUT_STATE):
+        for j in range(nj):
+            row[c] = work.jout[j, out]
+            c += 1
+    viol = 0.0
+    for i in range(sys.m):
+        viol += work.phi[i] * work.phi[i]
+    row[c] = np.sqrt(viol)
+    row[c + 1] = kinetic_energy(sys, qd)
+    row[c + 2] = potential_energy(sys, q)
+    row[c + 3] = work.scalars[SC_STRAIN_ENERGY]
+    row[c + 4] = work.scalars[SC_CONTACT_ENERGY]
+    row[c + 5] = y[2 * n]
+    row[c + 6] = y[2 * n + 1]
+    return status
+
