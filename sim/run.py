@@ -194,7 +194,8 @@ class Progress:
 
     def __init__(self, t_end: float, enabled: bool):
         self.t_end = t_end
-        self.enabled = enabled
+        # A carriage-return status line only makes sense on a terminal.
+        self.enabled = enabled and sys.stderr.isatty()
         self.start = time.perf_counter()
 
     def update(self, t: float) -> None:
