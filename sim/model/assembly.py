@@ -279,6 +279,7 @@ def build_system(scene: dict, *, ideal: bool = False, rigid: bool = False) -> tu
         beam_off=np.array(beam_off, dtype=np.int64),
         beam_nel=np.array(beam_nel, dtype=np.int64),
         beam_f=np.array(beam_f, dtype=float).reshape(-1, 4),
+        **_stacked_beam_constants(beam_f),
         ref_idx=ref_idx,
         ref_coef=ref_coef,
         ang_idx=ang_idx,
@@ -286,6 +287,21 @@ def build_system(scene: dict, *, ideal: bool = False, rigid: bool = False) -> tu
     )
     layout = Layout(names, offset, is_beam, elements, rev_names + trans_names, rows, points)
     return system, layout
+
+
+def _stacked_beam_constants(beam_f: list[tuple[float, float, float, float]]) -> dict:
+    """The ANCF quadrature constants of every beam, stacked along a first axis."""
+    consts = [ancf.beam_constants(l, ea, ei) for l, ea, ei, _ in beam_f]
+    fields = {
+        "beam_dshape": ("dshape", (ancf.AXIAL_GAUSS_POINTS, 4)),
+        "beam_axial_w": ("axial_weight", (ancf.AXIAL_GAUSS_POINTS,)),
+        "beam_d2shape": ("d2shape", (ancf.BENDING_GAUSS_POINTS, 4)),
+        "beam_bending_w": ("bending_weight", (ancf.BENDING_GAUSS_POINTS,)),
+    }
+    return {
+        key: np.array([getattr(c, name) for c in consts], dtype=float).reshape(-1, *shape)
+        for key, (name, shape) in fields.items()
+    }
 
 
 def _weld(scene, jname, joint, p0, p1, offset, is_beam, constraint) -> None:

@@ -9,6 +9,9 @@ S1 = 1 − 3ξ² + 2ξ³, S2 = l(ξ − 2ξ² + ξ³), S3 = 3ξ² − 2ξ³, S4 
 import numba
 import numpy as np
 
+from sim.model import ancf
+from sim.model.system import BM_DAMPING
+
 
 def hermite_shape(xi: float, length: float) -> np.ndarray:
     """(S1, S2, S3, S4) at ξ for an element of length l (m)."""
@@ -43,6 +46,29 @@ def beam_gravity_force(rho_a: float, length: float, elements: int, g: np.ndarray
 
 @numba.njit(cache=True)
 def beam_forces(sys, q: np.ndarray, qd: np.ndarray, gen: np.ndarray, scratch: np.ndarray):
-    """Subtract the elastic (and damping) forces of every beam from `gen`;
-    return (dissipated power W, strain energy J)."""
-    return 0.0, 0.0
+    """Subtract the elastic forces (and the stiffness-proportional damping forces,
+    where a beam has a damping coefficient) of every beam from `gen`; return
+    (dissipated power W, strain energy J)."""
+    p_diss = 0.0
+    strain = 0.0
+    for b in range(sys.beam_off.shape[0]):
+        o = sys.beam_off[b]
+        size = 4 * (sys.beam_nel[b] + 1)
+        qb = q[o : o + size]
+        out = scratch[:size]
+        dshape = sys.beam_dshape[b]
+        axial_w = sys.beam_axial_w[b]
+        d2shape = sys.beam_d2shape[b]
+        bending_w = sys.beam_bending_w[b]
+        ancf.beam_elastic_forces(qb, dshape, axial_w, d2shape, bending_w, out)
+        for i in range(size):
+            gen[o + i] -= out[i]
+        strain += ancf.beam_strain_energy(qb, dshape, axial_w, d2shape, bending_w)
+        beta = sys.beam_f[b, BM_DAMPING]
+        if beta > 0.0:
+            qdb = qd[o : o + size]
+            ancf.beam_damping_forces(qb, qdb, dshape, axial_w, d2shape, bending_w, beta, out)
+            for i in range(size):
+                gen[o + i] -= out[i]
+                p_diss += out[i] * qdb[i]
+    return p_diss, strain

@@ -86,6 +86,10 @@ class System(NamedTuple):
     beam_off: np.ndarray  # (nbm,) first coordinate of each beam
     beam_nel: np.ndarray  # (nbm,) elements per beam
     beam_f: np.ndarray  # (nbm, 4) element length, EA, EI, damping coefficient
+    beam_dshape: np.ndarray  # (nbm, ga, 4) ANCF constants, see sim.model.ancf.beam_constants
+    beam_axial_w: np.ndarray  # (nbm, ga)
+    beam_d2shape: np.ndarray  # (nbm, gb, 4)
+    beam_bending_w: np.ndarray  # (nbm, gb)
     ref_idx: np.ndarray  # (nbody, 4) coordinates combined into each reference point
     ref_coef: np.ndarray  # (nbody, 4) their coefficients (shape functions)
     ang_idx: np.ndarray  # (nbody, 2) angle coordinate (rigid) or chord nodes (beam)
