@@ -86,7 +86,9 @@ def _decode(rows: np.ndarray, bodies: list[str], joints: list[str]) -> dict[str,
     out = {}
     for name, (first, shape) in column_layout(len(bodies), len(joints)).items():
         width = int(np.prod(shape, dtype=int))
-        out[RENAMED.get(name, name)] = rows[:, first : first + width].reshape((rows.shape[0], *shape))
+        out[RENAMED.get(name, name)] = rows[:, first : first + width].reshape(
+            (rows.shape[0], *shape)
+        )
     return out
 
 

@@ -96,9 +96,9 @@ def prepare(
     period = crank_period(scene)
     n_rev = scene["simulation"]["revolutions"] if revolutions is None else revolutions
     per_rev = scene["simulation"]["output_per_revolution"]
-    n_out = int(math.floor(n_rev * per_rev + 1e-9)) + 1
+    n_out = math.floor(n_rev * per_rev + 1e-9) + 1
     out_t = np.arange(n_out) * (period / per_rev)
-    sec_t = np.arange(int(math.floor(n_rev + 1e-9)) + 1) * period
+    sec_t = np.arange(math.floor(n_rev + 1e-9) + 1) * period
     width = row_width(len(layout.bodies), len(layout.clearance_joints))
     solver = scene["solver"]
     opts = np.zeros(dopri.N_OPTS)
@@ -166,7 +166,8 @@ def diagnose(integ: Integration, status: int) -> str:
         )
     if status == dopri.VIOLATION:
         return (
-            f"{at}: ideal constraints drifted beyond {integ.opts[dopri.OPT_VIOLATION_BOUND]:.3g} m; "
+            f"{at}: ideal constraints drifted beyond "
+            f"{integ.opts[dopri.OPT_VIOLATION_BOUND]:.3g} m; "
             "the mechanism may pass a singular (locked) position; raise solver.baumgarte_* or "
             "tighten solver.rtol"
         )

@@ -87,9 +87,7 @@ def _local_points(body: dict) -> dict[str, tuple[float, float]]:
 def _joint_modulus(scene: dict, names: list[str]) -> float:
     """E* of the two bodies' materials; the ground takes its partner's material
     (an assumption listed in the scene)."""
-    mats = [
-        scene["materials"][scene["bodies"][n]["material"]] for n in names if n != GROUND
-    ]
+    mats = [scene["materials"][scene["bodies"][n]["material"]] for n in names if n != GROUND]
     if len(mats) == 1:
         mats = mats * 2
     return effective_modulus(
@@ -142,7 +140,12 @@ def build_system(scene: dict, *, ideal: bool = False, rigid: bool = False) -> tu
             beam_off.append(o)
             beam_nel.append(ne)
             beam_f.append(
-                (body["length"] / ne, mat["youngs_modulus"] * area, mat["youngs_modulus"] * inertia, beta)
+                (
+                    body["length"] / ne,
+                    mat["youngs_modulus"] * area,
+                    mat["youngs_modulus"] * inertia,
+                    beta,
+                )
             )
         else:
             m, j = body_mass_properties(body, mat)
@@ -230,7 +233,9 @@ def build_system(scene: dict, *, ideal: bool = False, rigid: bool = False) -> tu
         r_b = joint["bearing_radius"]
         r_j = r_b - clearance
         rj_pts.append((p0, p1))
-        rj_f.append((r_b, r_j, clearance, revolute_stiffness(r_b, r_j, _joint_modulus(scene, pair))))
+        rj_f.append(
+            (r_b, r_j, clearance, revolute_stiffness(r_b, r_j, _joint_modulus(scene, pair)))
+        )
         rev_names.append(jname)
 
     drive_row = drive_coord = -1
@@ -238,7 +243,9 @@ def build_system(scene: dict, *, ideal: bool = False, rigid: bool = False) -> tu
         d = scene["drive"]
         drive_coord = offset[d["body"]] + 2
         drive_row = m_rows
-        constraint("drive", CON_DRIVE, (drive_coord,), (math.radians(d["initial_angle_deg"]), omega(scene)))
+        constraint(
+            "drive", CON_DRIVE, (drive_coord,), (math.radians(d["initial_angle_deg"]), omega(scene))
+        )
 
     mass_inv = np.zeros_like(mass)
     for s, e in blocks:
@@ -320,7 +327,12 @@ def _weld(scene, jname, joint, p0, p1, offset, is_beam, constraint) -> None:
             return
         ux, uy = _local_points(body)[joint["points"][1]]
         c, s = math.cos(theta), math.sin(theta)
-        constraint(jname, CON_CLAMP, (offset[pair[1]],), (gx - c * ux + s * uy, gy - s * ux - c * uy, theta))
+        constraint(
+            jname,
+            CON_CLAMP,
+            (offset[pair[1]],),
+            (gx - c * ux + s * uy, gy - s * ux - c * uy, theta),
+        )
         return
     if is_beam[pair[0]] or is_beam[pair[1]]:
         raise SceneError(f"joints.{jname}: a weld between two bodies needs both rigid")

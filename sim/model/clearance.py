@@ -30,14 +30,14 @@ import numba
 import numpy as np
 
 from sim.model.contact import friction_force, lankarani_nikravesh
-from sim.model.kinematics import apply_point_force, point_position, point_velocity, rotate
+from sim.model.kinematics import apply_point_force, point_position, point_velocity
 from sim.model.system import (
     CORNERS_PER_SLIDER,
     CT_EXPONENT,
-    CT_SLIDER_LAW,
     CT_FRICTION,
     CT_MIN_IMPACT_SPEED,
     CT_RESTITUTION,
+    CT_SLIDER_LAW,
     CT_V0,
     CT_V1,
     GAPS_PER_SLIDER,
@@ -92,32 +92,39 @@ def guide_frame(sys, j: int) -> tuple[float, float, float, float]:
 
 
 @numba.njit(cache=True)
-def corner_offset(sys, j: int, i: int, q: np.ndarray) -> tuple[float, float]:
-    """Global vector (m) from the slider's centre to its corner i."""
-    o = sys.tj_off[j]
-    return rotate(
-        q[o + 2],
-        0.5 * CORNER_SX[i] * sys.tj_f[j, TJ_LENGTH],
-        0.5 * CORNER_SY[i] * sys.tj_f[j, TJ_WIDTH],
-    )
-
-
-@numba.njit(cache=True)
-def slider_point_velocity(
-    sys, j: int, qd: np.ndarray, ax: float, ay: float
-) -> tuple[float, float]:
+def slider_point_velocity(sys, j: int, qd: np.ndarray, ax: float, ay: float) -> tuple[float, float]:
     """Velocity (m/s) of the slider's material point at offset (ax, ay) from its centre."""
     o = sys.tj_off[j]
     w = qd[o + 2]
     return qd[o] - w * ay, qd[o + 1] + w * ax
 
 
-@numba.njit(cache=True)
-def lateral_offset(sys, j: int, q: np.ndarray, ax: float, ay: float) -> float:
-    """(r − p)·n_g (m) of the slider point at offset (ax, ay) from its centre."""
+@numba.njit(cache=True, inline="always")
+def slider_pose(sys, j: int, q: np.ndarray) -> tuple[float, float, float, float]:
+    """cos θ and sin θ of slider j, and the normal (n_x, n_y) of its guide: the
+    trigonometry every corner of one evaluation shares."""
     o = sys.tj_off[j]
     _, _, nx, ny = guide_frame(sys, j)
-    return (q[o] + ax - sys.tj_f[j, TJ_PX]) * nx + (q[o + 1] + ay - sys.tj_f[j, TJ_PY]) * ny
+    return np.cos(q[o + 2]), np.sin(q[o + 2]), nx, ny
+
+
+@numba.njit(cache=True, inline="always")
+def corner_gap(
+    sys, j: int, i: int, side: float, q, qd, c: float, s: float, nx: float, ny: float
+) -> tuple[float, float, float, float]:
+    """Penetration δ (m), its rate (m/s) and the corner's offset (a_x, a_y) from the
+    slider centre, for corner i of slider j against wall `side`, from its pose."""
+    o = sys.tj_off[j]
+    ux = 0.5 * CORNER_SX[i] * sys.tj_f[j, TJ_LENGTH]
+    uy = 0.5 * CORNER_SY[i] * sys.tj_f[j, TJ_WIDTH]
+    ax = c * ux - s * uy
+    ay = s * ux + c * uy
+    w = qd[o + 2]
+    vx = qd[o] - w * ay
+    vy = qd[o + 1] + w * ax
+    lateral = (q[o] + ax - sys.tj_f[j, TJ_PX]) * nx + (q[o + 1] + ay - sys.tj_f[j, TJ_PY]) * ny
+    delta = side * lateral - 0.5 * sys.tj_f[j, TJ_GAP_WIDTH]
+    return delta, side * (vx * nx + vy * ny), ax, ay
 
 
 @numba.njit(cache=True)
@@ -132,13 +139,11 @@ def gap(sys, g: int, q: np.ndarray, qd: np.ndarray) -> tuple[float, float]:
         return e - sys.rj_f[g, RJ_CLEARANCE], rate
     k = g - nr
     j = k // GAPS_PER_SLIDER
-    i = (k % GAPS_PER_SLIDER) // 2
-    side = 1.0 if k % 2 == 0 else -1.0
-    ax, ay = corner_offset(sys, j, i, q)
-    vx, vy = slider_point_velocity(sys, j, qd, ax, ay)
-    _, _, nx, ny = guide_frame(sys, j)
-    delta = side * lateral_offset(sys, j, q, ax, ay) - 0.5 * sys.tj_f[j, TJ_GAP_WIDTH]
-    return delta, side * (vx * nx + vy * ny)
+    c, s, nx, ny = slider_pose(sys, j, q)
+    delta, rate, _, _ = corner_gap(
+        sys, j, (k % GAPS_PER_SLIDER) // 2, 1.0 if k % 2 == 0 else -1.0, q, qd, c, s, nx, ny
+    )
+    return delta, rate
 
 
 @numba.njit(cache=True)
@@ -214,7 +219,11 @@ def revolute_clearance_forces(
     for j in range(sys.rj_pts.shape[0]):
         pb = sys.rj_pts[j, 0]
         pj = sys.rj_pts[j, 1]
-        delta, rate = gap(sys, j, q, qd)
+        ex, ey = eccentricity(sys, j, q)
+        e = np.hypot(ex, ey)
+        delta = e - sys.rj_f[j, RJ_CLEARANCE]
+        vx, vy = eccentricity_rate(sys, j, q, qd)
+        rate = (ex * vx + ey * vy) / e if e > 0.0 else 0.0
         jout[j, OUT_PENETRATION] = max(delta, 0.0)
         jout[j, OUT_RATE] = rate
         jout[j, OUT_NORMAL_FORCE] = 0.0
@@ -232,8 +241,6 @@ def revolute_clearance_forces(
             ce[CT_EXPONENT],
             ce[CT_MIN_IMPACT_SPEED],
         )
-        ex, ey = eccentricity(sys, j, q)
-        e = np.hypot(ex, ey)
         nx = ex / e
         ny = ey / e
         rj = sys.rj_f[j, RJ_JOURNAL_RADIUS]
@@ -300,18 +307,16 @@ def _winkler_edge(sys, j, w, q, qd, mem, gen):
     deepest penetration m)."""
     nr = sys.rj_pts.shape[0]
     base = nr + GAPS_PER_SLIDER * j
-    o = sys.tj_off[j]
-    _, _, nx, ny = guide_frame(sys, j)
+    c, s, nx, ny = slider_pose(sys, j, q)
     # Which long edge faces wall w: the one whose outward normal (body +y for
-    # corners 0, 1) points along side·n_g.
-    uy_x, uy_y = rotate(q[o + 2], 0.0, 1.0)
+    # corners 0, 1, that is (−sin θ, cos θ)) points along side·n_g.
     side = 1.0 if w == 0 else -1.0
-    a = 0 if side * (uy_x * nx + uy_y * ny) > 0.0 else 2
+    a = 0 if side * (-s * nx + c * ny) > 0.0 else 2
     b = a + 1
     ga = base + 2 * a + w
     gb = base + 2 * b + w
-    da, ra = gap(sys, ga, q, qd)
-    db, rb = gap(sys, gb, q, qd)
+    da, ra, aax, aay = corner_gap(sys, j, a, side, q, qd, c, s, nx, ny)
+    db, rb, abx, aby = corner_gap(sys, j, b, side, q, qd, c, s, nx, ny)
     if da <= 0.0 and db <= 0.0:
         return 0.0, 0.0, 0.0, 0.0, 0.0
     k_face = sys.tj_f[j, TJ_K_FACE]
@@ -331,14 +336,14 @@ def _winkler_edge(sys, j, w, q, qd, mem, gen):
         u_el = k_face * share * db * db / 6.0
     rate = ra + frac * (rb - ra)
     if mem[ga, 0] > 0.0 or mem[gb, 0] > 0.0:
-        onset = max(mem[ga, 1] if mem[ga, 0] > 0.0 else 0.0, mem[gb, 1] if mem[gb, 0] > 0.0 else 0.0)
+        onset = max(
+            mem[ga, 1] if mem[ga, 0] > 0.0 else 0.0, mem[gb, 1] if mem[gb, 0] > 0.0 else 0.0
+        )
     else:
         onset = _onset_rate(mem, ga if da > 0.0 else gb, rate)
     ce = sys.contact
     v_ref = max(onset, ce[CT_MIN_IMPACT_SPEED])
     fn = max(0.0, f_el * (1.0 + 0.75 * (1.0 - ce[CT_RESTITUTION] ** 2) * rate / v_ref))
-    aax, aay = corner_offset(sys, j, a, q)
-    abx, aby = corner_offset(sys, j, b, q)
     cx = aax + frac * (abx - aax)
     cy = aay + frac * (aby - aay)
     ft, pf = _slider_force(sys, j, q, qd, side, fn, cx, cy, gen)
@@ -367,6 +372,7 @@ def translational_clearance_forces(
         total_ft = 0.0
         deepest = 0.0
         state = 0.0
+        c, s, nx, ny = slider_pose(sys, j, q)
         for w in range(2):
             side = 1.0 if w == 0 else -1.0
             if ce[CT_SLIDER_LAW] == SLIDER_LAW_WINKLER:
@@ -382,8 +388,8 @@ def translational_clearance_forces(
             first = _flagged_edge(mem, base, w)
             if first >= 0:
                 second = (first + 1) % CORNERS_PER_SLIDER
-                da, _ = gap(sys, base + 2 * first + w, q, qd)
-                db, _ = gap(sys, base + 2 * second + w, q, qd)
+                da, _, aax, aay = corner_gap(sys, j, first, side, q, qd, c, s, nx, ny)
+                db, _, abx, aby = corner_gap(sys, j, second, side, q, qd, c, s, nx, ny)
                 # At a located crossing one depth may be a hair below zero.
                 da = max(da, 0.0)
                 db = max(db, 0.0)
@@ -391,8 +397,6 @@ def translational_clearance_forces(
                 state = 2.0
                 if da + db <= 0.0:
                     continue
-                aax, aay = corner_offset(sys, j, first, q)
-                abx, aby = corner_offset(sys, j, second, q)
                 frac = (da + 2.0 * db) / (3.0 * (da + db))
                 cx = aax + frac * (abx - aax)
                 cy = aay + frac * (aby - aay)
@@ -405,7 +409,7 @@ def translational_clearance_forces(
                 continue
             for i in range(CORNERS_PER_SLIDER):
                 g = base + 2 * i + w
-                delta, rate = gap(sys, g, q, qd)
+                delta, rate, ax, ay = corner_gap(sys, j, i, side, q, qd, c, s, nx, ny)
                 if delta <= 0.0:
                     continue
                 deepest = max(deepest, delta)
@@ -418,7 +422,6 @@ def translational_clearance_forces(
                     ce[CT_EXPONENT],
                     ce[CT_MIN_IMPACT_SPEED],
                 )
-                ax, ay = corner_offset(sys, j, i, q)
                 ft, pf = _slider_force(sys, j, q, qd, side, fn, ax, ay, gen)
                 p_diss += pf + (fn - fel) * rate
                 u_contact += corner_energy(sys, j, delta)

@@ -22,7 +22,7 @@ import numpy as np
 from sim.model.clearance import face_switch_energy, gap
 from sim.model.system import OUT_NORMAL_FORCE, OUT_PENETRATION
 from sim.solve.dae import NONFINITE, OK, SC_DRIVE_TORQUE, rhs
-from sim.solve.record import reference_point, record_row
+from sim.solve.record import record_row, reference_point
 
 # Integrator status codes beyond the right-hand side's OK / SINGULAR / NONFINITE.
 MAX_STEPS, STEP_COLLAPSE, PENETRATION, VIOLATION = 3, 4, 5, 6
@@ -419,4 +419,3 @@ def integrate(
     st[ST_H] = h
     st[ST_FACOLD] = facold
     return OK
-

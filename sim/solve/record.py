@@ -139,4 +139,3 @@ def record_row(sys, work, mem: np.ndarray, t: float, y: np.ndarray, row: np.ndar
     row[c + 5] = y[2 * n]
     row[c + 6] = y[2 * n + 1]
     return status
-
