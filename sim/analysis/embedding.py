@@ -264,4 +264,9 @@ def embedding_dimension(
     below = fractions < threshold
     if below.any():
         return int(np.argmax(below)) + 1
+    if np.isnan(fractions).all():
+        # No neighbour at a non-zero distance in any dimension: the series repeats
+        # exactly (to its stored precision). A closed orbit needs two dimensions to
+        # unfold; one would make its two branches through each value neighbours.
+        return 2
     return int(np.nanargmin(fractions)) + 1

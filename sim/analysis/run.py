@@ -1,5 +1,6 @@
 """Chaos analysis of one simulation output dataset, channel by channel."""
 
+import dataclasses
 from dataclasses import dataclass
 
 import numpy as np
@@ -90,8 +91,14 @@ def _channels(ds: xr.Dataset) -> list[_Channel]:
 def _analyze_channel(channel: _Channel, dt: float, crank_period: float) -> tuple[dict, Verdict]:
     extent = np.array([np.ptp(channel.value), np.ptp(channel.rate)])
     section = np.column_stack([channel.section_value, channel.section_rate])
+    moving = extent[0] > 1e-6 * np.max(np.abs(channel.value))
     structure = section_structure(section, extent)
-    if extent[0] > 0:
+    if not moving:
+        # A still channel is a fixed point: its section repeats every crossing.
+        structure = dataclasses.replace(structure, period=1, return_distance=0.0)
+    # A channel whose range is within float32 storage precision of its level
+    # (e.g. the slider across an ideal guide) does not move.
+    if moving:
         exponent = rosenstein(channel.value, dt)
         lyap = (exponent.exponent, exponent.stderr, exponent.emb_dim, exponent.lag)
     else:
