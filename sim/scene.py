@@ -62,7 +62,7 @@ TOP = {
     "solver": Field("mapping"),
 }
 MATERIAL = {
-    "youngs_modulus": _num(1e6, 1e13, "Pa", open_min=True),
+    "youngs_modulus": _num(1e6, 1e15, "Pa", open_min=True),
     "poisson": _num(0.0, 0.499),
     "density": _num(1.0, 1e5, "kg/m^3"),
 }

@@ -1,0 +1,24 @@
+# Reproduction of every study of shared/spec/STUDIES.md: `snakemake -j2` (full),
+# `snakemake -j2 --configfile config/quick.yaml` (quick), `snakemake --report report.html`.
+# Studies are entries of config/config.yaml; the rules are grouped by stage in workflow/rules.
+
+
+configfile: "config/config.yaml"
+
+
+include: "workflow/rules/common.smk"
+include: "workflow/rules/simulate.smk"
+include: "workflow/rules/analyze.smk"
+include: "workflow/rules/sweep.smk"
+include: "workflow/rules/experiment.smk"
+include: "workflow/rules/figures.smk"
+include: "workflow/rules/report.smk"
+
+
+report: landing_page()
+
+
+rule all:
+    input:
+        all_targets(),
+    default_target: True

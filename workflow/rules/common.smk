@@ -1,0 +1,297 @@
+"""Helpers of the workflow: the resolved study settings, file names and rule inputs.
+
+Every study is a config entry (config/config.yaml); this file turns entries into file lists and
+`sim` arguments. Rules call these functions by name (no lambdas inside rules).
+"""
+
+import shlex
+from pathlib import Path
+
+from snakemake.utils import validate
+
+validate(config, schema="../schemas/config.schema.yaml")
+
+QUICK = str(config.get("quick", False)).lower() == "true"
+DEFAULTS = config["quick_defaults"] if QUICK else config["defaults"]
+DURATION_KEYS = ("scene", "revolutions", "output_per_revolution", "transient")
+STUDIES = [name for name, entry in config["studies"].items() if entry.get("enabled", True)]
+# keys an ideal (every joint ideal, every link rigid) reference run ignores
+IDEAL_IGNORED = (".clearance", ".kind", ".elements")
+
+
+wildcard_constraints:
+    study="[A-Za-z0-9_-]+",
+    case="[A-Za-z0-9_.+-]+",
+
+
+def study(name):
+    """The settings of study `name`: its entry, its `quick:` block on top when quick, and
+    the defaults for what it does not set."""
+    entry = config["studies"][name]
+    settings = {key: value for key, value in entry.items() if key != "quick"}
+    if QUICK:
+        settings.update(entry.get("quick", {}))
+    for key in DURATION_KEYS:
+        settings.setdefault(key, DEFAULTS[key])
+    return settings
+
+
+def point_name(sweep, value):
+    """File name of one sweep point, e.g. clearance-0.0005m or speed-120rpm."""
+    return f"{sweep['label']}-{value:g}{sweep['unit']}"
+
+
+def sweep_points(name):
+    """(point name, value) of every point of a sweep study."""
+    sweep = study(name)["sweep"]
+    return [(point_name(sweep, value), value) for value in sweep["values"]]
+
+
+def case_names(name):
+    """The cases of a study: its `cases`, or the points of its sweep."""
+    settings = study(name)
+    if "sweep" in settings:
+        return [point for point, _ in sweep_points(name)]
+    return list(settings["cases"])
+
+
+def has(name, analysis):
+    return analysis in study(name)["analyses"]
+
+
+def link_overrides():
+    """Scene keys of the link model switch (config `model`)."""
+    model = config["model"]
+    if model["links"] == "rigid":
+        return {f"bodies.{body}.kind": "rigid" for body in model["flexible_bodies"]}
+    out = {}
+    for body in model["flexible_bodies"]:
+        out[f"bodies.{body}.kind"] = "beam"
+        out[f"bodies.{body}.elements"] = model["elements"]
+    return out
+
+
+def case_overrides(name, case):
+    """Every scene override of one case, in order of precedence (later wins): link model,
+    duration, defaults, study, case (or sweep point)."""
+    settings = study(name)
+    out = dict(link_overrides())
+    out["simulation.revolutions"] = settings["revolutions"]
+    out["simulation.output_per_revolution"] = settings["output_per_revolution"]
+    out.update(DEFAULTS.get("overrides", {}))
+    out.update(settings.get("overrides", {}))
+    if "sweep" in settings:
+        value = dict(sweep_points(name))[case]
+        out.update({key: value for key in settings["sweep"]["keys"]})
+    else:
+        out.update(settings["cases"][case])
+    return out
+
+
+def format_sets(overrides):
+    return " ".join(f"--set {shlex.quote(f'{key}={value}')}" for key, value in overrides.items())
+
+
+def run_sets(wildcards):
+    """`--set` arguments of a case's run."""
+    return format_sets(case_overrides(wildcards.study, wildcards.case))
+
+
+def ideal_sets(wildcards):
+    """`--set` arguments of a case's ideal reference run (clearance and link keys dropped:
+    `--ideal --rigid` ignores them, so changing them does not rerun the reference)."""
+    overrides = case_overrides(wildcards.study, wildcards.case)
+    kept = {k: v for k, v in overrides.items() if not k.endswith(IDEAL_IGNORED)}
+    return format_sets(kept)
+
+
+def scene_name(wildcards):
+    return study(wildcards.study)["scene"]
+
+
+def transient(wildcards):
+    return study(wildcards.study)["transient"]
+
+
+def crank_rpm(wildcards):
+    return case_overrides(wildcards.study, wildcards.case)["drive.speed_rpm"]
+
+
+def run_timeout(wildcards):
+    return study(wildcards.study).get("timeout_s", 120 if QUICK else 1800)
+
+
+def extreme_checks(wildcards):
+    return study(wildcards.study).get("checks", {})
+
+
+# ---------------------------------------------------------------- file names
+def run_file(name, case):
+    return f"results/{name}/run/{case}.nc"
+
+
+def ideal_file(name, case):
+    return f"results/{name}/ideal/{case}.nc"
+
+
+def analysis_file(name, case):
+    return f"results/{name}/analysis/{case}.nc"
+
+
+def runs_of_study(wildcards):
+    return [run_file(wildcards.study, case) for case in case_names(wildcards.study)]
+
+
+def ideals_of_study(wildcards):
+    return [ideal_file(wildcards.study, case) for case in case_names(wildcards.study)]
+
+
+def analyses_of_study(wildcards):
+    return [analysis_file(wildcards.study, case) for case in case_names(wildcards.study)]
+
+
+def statuses_of_study(wildcards):
+    return [f"results/{wildcards.study}/status/{case}.json" for case in case_names(wildcards.study)]
+
+
+def ideal_reference_of_case(wildcards):
+    """The ideal run a tolerant case is compared with: only for the study's
+    `ideal_reference` case (clearance 0 must reproduce the ideal joint)."""
+    if study(wildcards.study).get("ideal_reference") == wildcards.case:
+        return [ideal_file(wildcards.study, wildcards.case)]
+    return []
+
+
+def sweep_values(wildcards):
+    return [value for _, value in sweep_points(wildcards.study)]
+
+
+def sweep_parameter(wildcards):
+    return ",".join(study(wildcards.study)["sweep"]["keys"])
+
+
+def fidelity_reference(wildcards):
+    return study(wildcards.study)["reference"]
+
+
+# ---------------------------------------------------------------- experiment data
+def recording_file(wildcards):
+    """The measured recording of the study if it exists, else the synthetic one."""
+    measured = study(wildcards.study)["experiment"].get("recording")
+    if measured and Path(measured).exists():
+        return measured
+    return f"results/{wildcards.study}/recording/synthetic.csv"
+
+
+def recording_meta(wildcards):
+    csv = recording_file(wildcards)
+    return csv[: -len(".csv")] + ".meta.yaml"
+
+
+def synthetic_sets(wildcards):
+    """`--set` arguments of the synthetic recording's higher-fidelity run: the study's first
+    case with the `experiment.synthetic.overrides` on top."""
+    settings = study(wildcards.study)
+    overrides = case_overrides(wildcards.study, case_names(wildcards.study)[0])
+    overrides.update(settings["experiment"]["synthetic"].get("overrides", {}))
+    return format_sets(overrides)
+
+
+def synthetic_seed(wildcards):
+    return study(wildcards.study)["experiment"]["synthetic"]["seed"]
+
+
+def sensor_option(wildcards):
+    sensor = study(wildcards.study)["experiment"]["synthetic"].get("sensor")
+    return f"--sensor {shlex.quote(sensor)}" if sensor else ""
+
+
+# ---------------------------------------------------------------- targets
+def study_targets(name):
+    """Every final file of one study."""
+    cases = case_names(name)
+    base = f"results/{name}"
+    out = []
+    if has(name, "responses"):
+        out += [f"{base}/figures/responses_{case}.png" for case in cases]
+    if has(name, "trajectories"):
+        out += [f"{base}/figures/trajectories_{case}.png" for case in cases]
+    if has(name, "chaos"):
+        for case in cases:
+            out += [f"{base}/figures/phase_{case}.png", f"{base}/figures/poincare_{case}.png"]
+            out += [f"{base}/tables/lyapunov_{case}.csv", f"{base}/tables/lyapunov_{case}.html"]
+    if has(name, "peaks"):
+        out += [f"{base}/tables/peaks.csv", f"{base}/tables/peaks.html"]
+    if has(name, "bifurcation"):
+        out += [f"{base}/bifurcation.nc", f"{base}/figures/bifurcation.png"]
+        out += [f"{base}/tables/bifurcation_lyapunov.csv", f"{base}/tables/bifurcation_lyapunov.html"]
+    if has(name, "experiment"):
+        out += [f"{base}/comparison/{case}/comparison.json" for case in cases]
+    if has(name, "work_precision"):
+        out += [f"{base}/tables/work_precision.csv", f"{base}/tables/work_precision.html"]
+        out += [f"{base}/figures/work_precision.png"]
+    if has(name, "extremes"):
+        out += [f"{base}/tables/extremes.csv", f"{base}/tables/extremes.html"]
+    return out
+
+
+def all_targets():
+    out = [target for name in STUDIES for target in study_targets(name)]
+    return out + ["results/report/landing.rst", "results/report/claims.csv"]
+
+
+def landing_inputs(wildcards):
+    """Named inputs of the landing page: the results each claim of STUDIES.md is judged on,
+    for the studies of config `report` that are enabled."""
+    roles = config.get("report", {})
+    out = {}
+
+    def enabled(role):
+        name = roles.get(role)
+        return name if name in STUDIES else None
+
+    for role in ("flagship", "all_joints"):
+        name = enabled(role)
+        if name:
+            case = case_names(name)[0]
+            out[f"{role}_run"] = run_file(name, case)
+            out[f"{role}_ideal"] = ideal_file(name, case)
+            if has(name, "chaos"):
+                out[f"{role}_analysis"] = analysis_file(name, case)
+    for role in ("clearance_size", "speed"):
+        name = enabled(role)
+        if name and has(name, "peaks"):
+            out[f"{role}_peaks"] = f"results/{name}/tables/peaks.csv"
+    for role in ("bifurcation_clearance", "bifurcation_speed"):
+        name = enabled(role)
+        if name and has(name, "bifurcation"):
+            out[f"{role}_table"] = f"results/{name}/tables/bifurcation_lyapunov.csv"
+    name = enabled("experiment")
+    if name and has(name, "experiment"):
+        case = case_names(name)[0]
+        out["experiment_comparison"] = f"results/{name}/comparison/{case}/comparison.json"
+        out["experiment_meta"] = landing_recording(wildcards)["meta"]
+    return out
+
+
+def landing_page():
+    """The report's front page: the generated claims page once it exists."""
+    generated = "results/report/landing.rst"
+    return generated if Path(generated).exists() else "report/pending.rst"
+
+
+def sweep_settings(wildcards):
+    return study(wildcards.study)["sweep"]
+
+
+def study_cases(wildcards):
+    return case_names(wildcards.study)
+
+
+def landing_recording(wildcards):
+    """The recording the experiment study compares with, and its metadata file."""
+    name = config.get("report", {}).get("experiment")
+    if name not in STUDIES:
+        return {}
+    fake = type("Wildcards", (), {"study": name})()
+    return {"csv": recording_file(fake), "meta": recording_meta(fake)}
