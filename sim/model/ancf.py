@@ -51,8 +51,9 @@ Sources:
 
 from typing import NamedTuple
 
-import numba
 import numpy as np
+
+from sim.jit import kernel
 
 AXIAL_GAUSS_POINTS = 5
 """Gauss–Legendre points per element for the axial terms and the mass matrix (exact to degree 9)."""
@@ -66,7 +67,7 @@ def _gauss_rule(points: int) -> tuple[np.ndarray, np.ndarray]:
     return 0.5 * (x + 1.0), 0.5 * w
 
 
-@numba.njit(cache=True)
+@kernel
 def _hermite(xi: float, l: float, k: int, order: int) -> float:
     """Derivative of order 0, 1 or 2 with respect to x of the Hermite shape function S_{k+1}."""
     if order == 0:
@@ -179,7 +180,7 @@ def straight_beam_coordinates(p0: np.ndarray, p1: np.ndarray, n: int) -> np.ndar
 # so one set of helpers serves the axial (S') and the bending (S'') terms.
 
 
-@numba.njit(cache=True)
+@kernel
 def _interpolate(v: np.ndarray, base: int, shape: np.ndarray) -> tuple[float, float]:
     """Σ_k shape[k] v_e[k]: r' or r'' (v = q), or their rates (v = q̇), at one Gauss point."""
     x = 0.0
@@ -190,7 +191,7 @@ def _interpolate(v: np.ndarray, base: int, shape: np.ndarray) -> tuple[float, fl
     return x, y
 
 
-@numba.njit(cache=True)
+@kernel
 def _add_gradient(
     out: np.ndarray, base: int, shape: np.ndarray, scale: float, ax: float, ay: float
 ) -> None:
@@ -200,7 +201,7 @@ def _add_gradient(
         out[base + 2 * k + 1] += scale * shape[k] * ay
 
 
-@numba.njit(cache=True)
+@kernel
 def _add_block(
     out: np.ndarray,
     base: int,
@@ -226,7 +227,7 @@ def _add_block(
                     out[base + 2 * k + i, base + 2 * m + j] += skm * value
 
 
-@numba.njit(cache=True)
+@kernel
 def _add_bending_force(
     v: np.ndarray, d2shape: np.ndarray, bending_weight: np.ndarray, scale: float, out: np.ndarray
 ) -> None:
@@ -238,7 +239,7 @@ def _add_bending_force(
             _add_gradient(out, base, d2shape[g], scale * bending_weight[g], cx, cy)
 
 
-@numba.njit(cache=True)
+@kernel
 def _add_bending_stiffness(
     d2shape: np.ndarray, bending_weight: np.ndarray, scale: float, out: np.ndarray
 ) -> None:
@@ -248,7 +249,7 @@ def _add_bending_stiffness(
             _add_block(out, 4 * e, d2shape[g], scale * bending_weight[g], 0.0, 0.0, 0.0, 0.0, 1.0)
 
 
-@numba.njit(cache=True)
+@kernel
 def beam_elastic_forces(
     q: np.ndarray,
     dshape: np.ndarray,
@@ -273,7 +274,7 @@ def beam_elastic_forces(
     _add_bending_force(q, d2shape, bending_weight, 1.0, out)
 
 
-@numba.njit(cache=True)
+@kernel
 def beam_elastic_jacobian(
     q: np.ndarray,
     dshape: np.ndarray,
@@ -297,7 +298,7 @@ def beam_elastic_jacobian(
     _add_bending_stiffness(d2shape, bending_weight, 1.0, out)
 
 
-@numba.njit(cache=True)
+@kernel
 def beam_strain_energy(
     q: np.ndarray,
     dshape: np.ndarray,
@@ -319,7 +320,7 @@ def beam_strain_energy(
     return energy
 
 
-@numba.njit(cache=True)
+@kernel
 def beam_damping_forces(
     q: np.ndarray,
     qdot: np.ndarray,
@@ -353,7 +354,7 @@ def beam_damping_forces(
     _add_bending_force(qdot, d2shape, bending_weight, beta, out)
 
 
-@numba.njit(cache=True)
+@kernel
 def beam_damping_jacobians(
     q: np.ndarray,
     qdot: np.ndarray,
@@ -387,14 +388,14 @@ def beam_damping_jacobians(
 # Material points: joints, reference point, deflection output.
 
 
-@numba.njit(cache=True)
+@kernel
 def _locate(n: int, l: float, s: float) -> tuple[int, float]:
     """Element index and element coordinate ξ of the material point at arc length ``s`` (m)."""
     e = min(max(int(s / l), 0), n - 1)
     return e, s / l - e
 
 
-@numba.njit(cache=True)
+@kernel
 def _point(q: np.ndarray, n: int, l: float, s: float) -> tuple[float, float]:
     """Position (m) of the material point at arc length ``s`` (m)."""
     e, xi = _locate(n, l, s)
@@ -407,7 +408,7 @@ def _point(q: np.ndarray, n: int, l: float, s: float) -> tuple[float, float]:
     return x, y
 
 
-@numba.njit(cache=True)
+@kernel
 def beam_point(q: np.ndarray, n: int, l: float, s: float, out: np.ndarray) -> None:
     """Position r(s) (m) of the material point at undeformed arc length s ∈ [0, n l] (m).
 
@@ -417,7 +418,7 @@ def beam_point(q: np.ndarray, n: int, l: float, s: float, out: np.ndarray) -> No
     out[0], out[1] = _point(q, n, l, s)
 
 
-@numba.njit(cache=True)
+@kernel
 def beam_point_jacobian(n: int, l: float, s: float, shape_out: np.ndarray) -> int:
     """Sparse ∂r(s)/∂q of the material point at arc length ``s`` (m); returns the element index e.
 
@@ -433,7 +434,7 @@ def beam_point_jacobian(n: int, l: float, s: float, shape_out: np.ndarray) -> in
     return e
 
 
-@numba.njit(cache=True)
+@kernel
 def beam_midspan_deflection(q: np.ndarray, n: int, l: float) -> float:
     """Signed transverse deflection (m) of the mid-length material point from the end chord.
 

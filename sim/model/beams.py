@@ -6,9 +6,9 @@ Multibody Systems, 3rd ed., 2005, ch. 7; the paper's eq. 20), ξ = x/l:
 S1 = 1 − 3ξ² + 2ξ³, S2 = l(ξ − 2ξ² + ξ³), S3 = 3ξ² − 2ξ³, S4 = l(ξ³ − ξ²).
 """
 
-import numba
 import numpy as np
 
+from sim.jit import kernel
 from sim.model import ancf
 from sim.model.system import BM_DAMPING
 
@@ -44,7 +44,7 @@ def beam_gravity_force(rho_a: float, length: float, elements: int, g: np.ndarray
     return out
 
 
-@numba.njit(cache=True)
+@kernel
 def beam_forces(sys, q: np.ndarray, qd: np.ndarray, gen: np.ndarray, scratch: np.ndarray):
     """Subtract the elastic forces (and the stiffness-proportional damping forces,
     where a beam has a damping coefficient) of every beam from `gen`; return

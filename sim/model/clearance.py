@@ -26,9 +26,9 @@ Gap numbering: revolute clearance j is gap j; translational clearance j owns
 gaps nr + 8j + 2i + w for corner i (0..3) and wall w (0: +n_g side, 1: −n_g side).
 """
 
-import numba
 import numpy as np
 
+from sim.jit import kernel, kernel_inline
 from sim.model.contact import friction_force, lankarani_nikravesh
 from sim.model.kinematics import apply_point_force, point_position, point_velocity
 from sim.model.system import (
@@ -67,7 +67,7 @@ CORNER_SX = (1.0, -1.0, -1.0, 1.0)
 CORNER_SY = (1.0, 1.0, -1.0, -1.0)
 
 
-@numba.njit(cache=True)
+@kernel
 def eccentricity(sys, j: int, q: np.ndarray) -> tuple[float, float]:
     """Eccentricity vector e = r_J − r_B (m) of revolute clearance j."""
     bx, by = point_position(sys, sys.rj_pts[j, 0], q)
@@ -75,7 +75,7 @@ def eccentricity(sys, j: int, q: np.ndarray) -> tuple[float, float]:
     return jx - bx, jy - by
 
 
-@numba.njit(cache=True)
+@kernel
 def eccentricity_rate(sys, j: int, q: np.ndarray, qd: np.ndarray) -> tuple[float, float]:
     """ė (m/s) of revolute clearance j."""
     bx, by = point_velocity(sys, sys.rj_pts[j, 0], q, qd, 0.0, 0.0)
@@ -83,7 +83,7 @@ def eccentricity_rate(sys, j: int, q: np.ndarray, qd: np.ndarray) -> tuple[float
     return jx - bx, jy - by
 
 
-@numba.njit(cache=True)
+@kernel
 def guide_frame(sys, j: int) -> tuple[float, float, float, float]:
     """Tangent and normal (t_x, t_y, n_x, n_y) of the guide of translational clearance j."""
     c = np.cos(sys.tj_f[j, TJ_ANGLE])
@@ -91,7 +91,7 @@ def guide_frame(sys, j: int) -> tuple[float, float, float, float]:
     return c, s, -s, c
 
 
-@numba.njit(cache=True)
+@kernel
 def slider_point_velocity(sys, j: int, qd: np.ndarray, ax: float, ay: float) -> tuple[float, float]:
     """Velocity (m/s) of the slider's material point at offset (ax, ay) from its centre."""
     o = sys.tj_off[j]
@@ -99,7 +99,7 @@ def slider_point_velocity(sys, j: int, qd: np.ndarray, ax: float, ay: float) -> 
     return qd[o] - w * ay, qd[o + 1] + w * ax
 
 
-@numba.njit(cache=True, inline="always")
+@kernel_inline
 def slider_pose(sys, j: int, q: np.ndarray) -> tuple[float, float, float, float]:
     """cos θ and sin θ of slider j, and the normal (n_x, n_y) of its guide: the
     trigonometry every corner of one evaluation shares."""
@@ -108,7 +108,7 @@ def slider_pose(sys, j: int, q: np.ndarray) -> tuple[float, float, float, float]
     return np.cos(q[o + 2]), np.sin(q[o + 2]), nx, ny
 
 
-@numba.njit(cache=True, inline="always")
+@kernel_inline
 def corner_gap(
     sys, j: int, i: int, side: float, q, qd, c: float, s: float, nx: float, ny: float
 ) -> tuple[float, float, float, float]:
@@ -127,7 +127,7 @@ def corner_gap(
     return delta, side * (vx * nx + vy * ny), ax, ay
 
 
-@numba.njit(cache=True)
+@kernel
 def gap(sys, g: int, q: np.ndarray, qd: np.ndarray) -> tuple[float, float]:
     """Penetration δ (m, negative while apart) and its rate δ̇ (m/s) of gap g."""
     nr = sys.rj_pts.shape[0]
@@ -146,7 +146,7 @@ def gap(sys, g: int, q: np.ndarray, qd: np.ndarray) -> tuple[float, float]:
     return delta, rate
 
 
-@numba.njit(cache=True)
+@kernel
 def _flagged_edge(mem: np.ndarray, base: int, w: int) -> int:
     """First corner i of an edge (i, i+1) whose two corners are both flagged in
     contact with wall w, or -1. The contact mode (face or corners) follows the
@@ -159,20 +159,20 @@ def _flagged_edge(mem: np.ndarray, base: int, w: int) -> int:
     return -1
 
 
-@numba.njit(cache=True)
+@kernel
 def face_energy(sys, j: int, da: float, db: float) -> float:
     """Elastic energy (J) of slider j's face pressed in to end depths da, db (m)."""
     return sys.tj_f[j, TJ_K_FACE] * (da * da + da * db + db * db) / 6.0
 
 
-@numba.njit(cache=True)
+@kernel
 def corner_energy(sys, j: int, delta: float) -> float:
     """Elastic energy (J) of one corner of slider j pressed in to depth δ (m)."""
     p = sys.contact[CT_EXPONENT]
     return sys.tj_f[j, TJ_K_CORNER] * delta ** (p + 1.0) / (p + 1.0)
 
 
-@numba.njit(cache=True)
+@kernel
 def face_switch_energy(sys, mem: np.ndarray, g: int, q: np.ndarray, qd: np.ndarray) -> float:
     """Jump (J) of the stored contact energy when gap g's corner reaches its wall
     while the neighbouring corner on the same edge is in contact with it: the
@@ -195,7 +195,7 @@ def face_switch_energy(sys, mem: np.ndarray, g: int, q: np.ndarray, qd: np.ndarr
     return 0.0
 
 
-@numba.njit(cache=True)
+@kernel
 def _onset_rate(mem: np.ndarray, g: int, rate: float) -> float:
     """δ̇⁻ of gap g: the memory captured at the crossing, or, before the crossing
     was located, the current rate. The latter case is marked in mem[g, 2] so the
@@ -207,7 +207,7 @@ def _onset_rate(mem: np.ndarray, g: int, rate: float) -> float:
     return rate
 
 
-@numba.njit(cache=True)
+@kernel
 def revolute_clearance_forces(
     sys, q: np.ndarray, qd: np.ndarray, mem: np.ndarray, gen: np.ndarray, jout: np.ndarray
 ) -> tuple[float, float]:
@@ -261,7 +261,7 @@ def revolute_clearance_forces(
     return p_diss, u_contact
 
 
-@numba.njit(cache=True)
+@kernel
 def _slider_force(
     sys,
     j: int,
@@ -290,7 +290,7 @@ def _slider_force(
     return ft, -ft * slip
 
 
-@numba.njit(cache=True)
+@kernel
 def _winkler_edge(sys, j, w, q, qd, mem, gen):
     """The long edge of slider j that faces wall w, pressed into an elastic
     foundation of stiffness k' = K_face / L per unit length (Winkler).
@@ -350,7 +350,7 @@ def _winkler_edge(sys, j, w, q, qd, mem, gen):
     return fn, ft, pf + (fn - f_el) * rate, u_el, max(da, db)
 
 
-@numba.njit(cache=True)
+@kernel
 def translational_clearance_forces(
     sys, q: np.ndarray, qd: np.ndarray, mem: np.ndarray, gen: np.ndarray, jout: np.ndarray
 ) -> tuple[float, float]:

@@ -7,9 +7,9 @@ right-hand side γ and the velocity right-hand side ν, such that
 Mechanical Systems, 1989). Constraint types are listed in `sim.model.system`.
 """
 
-import numba
 import numpy as np
 
+from sim.jit import kernel
 from sim.model.kinematics import add_point_jacobian, point_position, point_quadratic_acceleration
 from sim.model.system import (
     CON_CLAMP,
@@ -21,7 +21,7 @@ from sim.model.system import (
 )
 
 
-@numba.njit(cache=True)
+@kernel
 def _coincident_points(sys, c, row, q, qd, phi, jac, gamma):
     """Rows (row, row+1): point i1 minus point i0."""
     p0 = sys.con_i[c, 0]
@@ -38,7 +38,7 @@ def _coincident_points(sys, c, row, q, qd, phi, jac, gamma):
     gamma[row + 1] = a0y - a1y
 
 
-@numba.njit(cache=True)
+@kernel
 def constraint_terms(
     sys,
     t: float,

@@ -9,7 +9,7 @@ velocity, v0 < v1 the friction tolerances of the modified Coulomb law.
 
 import math
 
-import numba
+from sim.jit import kernel
 
 
 def effective_modulus(e1: float, nu1: float, e2: float, nu2: float) -> float:
@@ -39,7 +39,7 @@ def face_stiffness(half_perimeter: float, e1: float, nu1: float, e2: float, nu2:
     return half_perimeter * e1 * e2 / (0.475 * (e2 * (1.0 - nu1**2) + e1 * (1.0 - nu2**2)))
 
 
-@numba.njit(cache=True)
+@kernel
 def lankarani_nikravesh(
     stiffness: float,
     delta: float,
@@ -65,7 +65,7 @@ def lankarani_nikravesh(
     return max(force, 0.0), elastic
 
 
-@numba.njit(cache=True)
+@kernel
 def coulomb_factor(slip_speed: float, v0: float, v1: float) -> float:
     """Correction c_d of the modified Coulomb law: 0 below v0, 1 above v1, linear
     between (Ambrósio, 2002; the paper's eq. 9). Removes the sign jump at v_t = 0."""
@@ -76,7 +76,7 @@ def coulomb_factor(slip_speed: float, v0: float, v1: float) -> float:
     return (slip_speed - v0) / (v1 - v0)
 
 
-@numba.njit(cache=True)
+@kernel
 def friction_force(normal_force: float, slip: float, mu: float, v0: float, v1: float) -> float:
     """Friction along the slip direction: F_t = −μ c_d(|v_t|) F_n sign(v_t), in N."""
     if slip == 0.0:

@@ -11,13 +11,13 @@ at a distance from the joint centre); for beam nodes the offset is ignored
 because a node has no rotational coordinate to carry its moment.
 """
 
-import numba
 import numpy as np
 
+from sim.jit import kernel, kernel_inline
 from sim.model.system import POINT_GROUND, POINT_RIGID
 
 
-@numba.njit(cache=True, inline="always")
+@kernel_inline
 def rotate(theta: float, ux: float, uy: float) -> tuple[float, float]:
     """A(θ) u."""
     c = np.cos(theta)
@@ -25,7 +25,7 @@ def rotate(theta: float, ux: float, uy: float) -> tuple[float, float]:
     return c * ux - s * uy, s * ux + c * uy
 
 
-@numba.njit(cache=True)
+@kernel
 def point_position(sys, k: int, q: np.ndarray) -> tuple[float, float]:
     """Global position (m) of point k."""
     kind = sys.pt_kind[k]
@@ -38,7 +38,7 @@ def point_position(sys, k: int, q: np.ndarray) -> tuple[float, float]:
     return q[o], q[o + 1]
 
 
-@numba.njit(cache=True)
+@kernel
 def point_velocity(
     sys, k: int, q: np.ndarray, qd: np.ndarray, ox: float, oy: float
 ) -> tuple[float, float]:
@@ -54,7 +54,7 @@ def point_velocity(
     return qd[o], qd[o + 1]
 
 
-@numba.njit(cache=True)
+@kernel
 def point_quadratic_acceleration(sys, k: int, q: np.ndarray, qd: np.ndarray) -> tuple[float, float]:
     """The part of r̈ not proportional to q̈: −θ̇² A u for rigid points, zero otherwise."""
     if sys.pt_kind[k] != POINT_RIGID:
@@ -65,7 +65,7 @@ def point_quadratic_acceleration(sys, k: int, q: np.ndarray, qd: np.ndarray) -> 
     return -w2 * ax, -w2 * ay
 
 
-@numba.njit(cache=True)
+@kernel
 def add_point_jacobian(sys, k: int, q: np.ndarray, sign: float, jac: np.ndarray, row: int) -> None:
     """Add sign·∂r_k/∂q into rows (row, row+1) of `jac`."""
     kind = sys.pt_kind[k]
@@ -80,7 +80,7 @@ def add_point_jacobian(sys, k: int, q: np.ndarray, sign: float, jac: np.ndarray,
         jac[row + 1, o + 2] += sign * ax
 
 
-@numba.njit(cache=True)
+@kernel
 def apply_point_force(
     sys, k: int, q: np.ndarray, fx: float, fy: float, ox: float, oy: float, gen: np.ndarray
 ) -> None:

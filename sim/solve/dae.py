@@ -18,9 +18,9 @@ the energy audit uses the integrator's own accuracy.
 
 from typing import NamedTuple
 
-import numba
 import numpy as np
 
+from sim.jit import kernel
 from sim.model.beams import beam_forces
 from sim.model.clearance import revolute_clearance_forces, translational_clearance_forces
 from sim.model.constraints import constraint_terms
@@ -89,7 +89,7 @@ def make_work(system: System) -> Work:
     )
 
 
-@numba.njit(cache=True)
+@kernel
 def _minv_times(sys, x: np.ndarray, out: np.ndarray) -> None:
     """out = M⁻¹ x, one mass block at a time."""
     for b in range(sys.blk_start.shape[0]):
@@ -102,12 +102,13 @@ def _minv_times(sys, x: np.ndarray, out: np.ndarray) -> None:
             out[i] = acc
 
 
-@numba.njit(cache=True)
+@kernel
 def generalized_forces(sys, work, t: float, q: np.ndarray, qd: np.ndarray, mem: np.ndarray) -> None:
     """Q = gravity + contact − elastic − damping forces into work.gen; the
     dissipated power and stored energies into work.scalars."""
     gen = work.gen
-    gen[:] = sys.gravity_force
+    for i in range(sys.n):
+        gen[i] = sys.gravity_force[i]
     pr, ur = revolute_clearance_forces(sys, q, qd, mem, gen, work.jout)
     pt, ut = translational_clearance_forces(sys, q, qd, mem, gen, work.jout)
     pb, us = beam_forces(sys, q, qd, gen, work.beam_work)
@@ -116,7 +117,7 @@ def generalized_forces(sys, work, t: float, q: np.ndarray, qd: np.ndarray, mem: 
     work.scalars[SC_STRAIN_ENERGY] = us
 
 
-@numba.njit(cache=True)
+@kernel
 def rhs(sys, work, mem: np.ndarray, t: float, y: np.ndarray, ydot: np.ndarray) -> int:
     """ẏ = f(t, y); returns OK, SINGULAR (constraint Jacobian lost rank) or NONFINITE."""
     n = sys.n
@@ -166,7 +167,8 @@ def rhs(sys, work, mem: np.ndarray, t: float, y: np.ndarray, ydot: np.ndarray) -
                 acc -= y_mt[i, r] * b[r]
             qdd[i] = acc
     else:
-        qdd[:] = work.minv_gen
+        for i in range(n):
+            qdd[i] = work.minv_gen[i]
     torque = 0.0
     drive_power = 0.0
     if sys.drive_row >= 0:
@@ -175,8 +177,9 @@ def rhs(sys, work, mem: np.ndarray, t: float, y: np.ndarray, ydot: np.ndarray) -
         torque = -work.rhs[sys.drive_row]
         drive_power = torque * qd[sys.drive_coord]
     work.scalars[SC_DRIVE_TORQUE] = torque
-    ydot[:n] = qd
-    ydot[n : 2 * n] = qdd
+    for i in range(n):
+        ydot[i] = qd[i]
+        ydot[n + i] = qdd[i]
     ydot[2 * n] = drive_power
     ydot[2 * n + 1] = work.scalars[SC_DISSIPATED_POWER]
     for i in range(2 * n + 2):
@@ -185,7 +188,7 @@ def rhs(sys, work, mem: np.ndarray, t: float, y: np.ndarray, ydot: np.ndarray) -
     return OK
 
 
-@numba.njit(cache=True)
+@kernel
 def kinetic_energy(sys, qd: np.ndarray) -> float:
     """T = ½ q̇ᵀ M q̇ (J)."""
     total = 0.0
@@ -200,7 +203,7 @@ def kinetic_energy(sys, qd: np.ndarray) -> float:
     return 0.5 * total
 
 
-@numba.njit(cache=True)
+@kernel
 def potential_energy(sys, q: np.ndarray) -> float:
     """Gravitational potential V = −Q_gᵀ q (J): gravity is uniform, so its
     generalized force is constant and V is linear in q for rigid bodies and

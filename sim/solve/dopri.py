@@ -16,9 +16,9 @@ The caller advances the integration in chunks (`integrate` returns at t_end);
 all state between chunks lives in the arrays it passes.
 """
 
-import numba
 import numpy as np
 
+from sim.jit import kernel
 from sim.model.clearance import face_switch_energy, gap
 from sim.model.system import OUT_NORMAL_FORCE, OUT_PENETRATION
 from sim.solve.dae import NONFINITE, OK, SC_DRIVE_TORQUE, rhs
@@ -57,7 +57,7 @@ SAFE, BETA, FAC_MIN, FAC_MAX = 0.9, 0.04, 0.2, 10.0
 EXPO1 = 0.2 - BETA * 0.75
 
 
-@numba.njit(cache=True)
+@kernel
 def _stages(sys, work, mem, t: float, h: float, y: np.ndarray) -> int:
     """Stages 2–7 from k1 = work.stages[0]; the new state into work.ynew."""
     k = work.stages
@@ -98,7 +98,7 @@ def _stages(sys, work, mem, t: float, h: float, y: np.ndarray) -> int:
     return rhs(sys, work, mem, t + h, yn, k[6])
 
 
-@numba.njit(cache=True)
+@kernel
 def _error_norm(work, y: np.ndarray, h: float, n2: int, rtol: float, atol: float) -> float:
     """RMS of the embedded error estimate over q and q̇, scaled by atol + rtol·|y|.
     The energy quadratures are left out: they follow the motion's accuracy."""
@@ -114,7 +114,7 @@ def _error_norm(work, y: np.ndarray, h: float, n2: int, rtol: float, atol: float
     return np.sqrt(total / n2)
 
 
-@numba.njit(cache=True)
+@kernel
 def _dense_coefficients(work, y: np.ndarray, h: float) -> None:
     """Coefficients of the continuous extension over the step just computed."""
     k = work.stages
@@ -132,7 +132,7 @@ def _dense_coefficients(work, y: np.ndarray, h: float) -> None:
         )
 
 
-@numba.njit(cache=True)
+@kernel
 def _interpolate(work, theta: float, count: int, out: np.ndarray) -> None:
     """The first `count` state entries at fraction θ of the step into `out`."""
     d = work.dense
@@ -141,7 +141,7 @@ def _interpolate(work, theta: float, count: int, out: np.ndarray) -> None:
         out[i] = d[0, i] + theta * (d[1, i] + t1 * (d[2, i] + theta * (d[3, i] + t1 * d[4, i])))
 
 
-@numba.njit(cache=True)
+@kernel
 def _gap_at(sys, work, g: int, theta: float) -> float:
     """δ of gap g on the dense output at fraction θ of the step (positions only)."""
     n = sys.n
@@ -150,7 +150,7 @@ def _gap_at(sys, work, g: int, theta: float) -> float:
     return delta
 
 
-@numba.njit(cache=True)
+@kernel
 def _locate(sys, work, g: int, d0: float, d1: float) -> float:
     """Fraction θ ∈ (0, 1] of the step where gap g changes sign (Illinois method,
     Dowell & Jarratt, BIT 11, 1971), from end values d0 and d1 of opposite sign."""
@@ -176,7 +176,7 @@ def _locate(sys, work, g: int, d0: float, d1: float) -> float:
     return b
 
 
-@numba.njit(cache=True)
+@kernel
 def _first_event(sys, work, mem, y: np.ndarray) -> tuple[int, float]:
     """Earliest gap whose sign disagrees with its flag at the end of the step, and
     the fraction of the step where it crosses (0 when it already disagreed at the
@@ -201,7 +201,7 @@ def _first_event(sys, work, mem, y: np.ndarray) -> tuple[int, float]:
     return best, best_theta
 
 
-@numba.njit(cache=True)
+@kernel
 def _grazed(sys, work, mem) -> bool:
     """True if a stage of the step penetrated a gap that is apart at both ends of
     the step: a contact the sign test at the step's ends cannot see."""
@@ -215,7 +215,7 @@ def _grazed(sys, work, mem) -> bool:
     return False
 
 
-@numba.njit(cache=True)
+@kernel
 def _flip(sys, mem, g: int, y: np.ndarray) -> None:
     """Toggle the contact flag of gap g at state y; at an onset, remember δ̇⁻.
     A switch between the slider's corner and face laws books its energy jump
@@ -235,7 +235,7 @@ def _flip(sys, mem, g: int, y: np.ndarray) -> None:
         y[2 * n + 1] -= jump
 
 
-@numba.njit(cache=True)
+@kernel
 def _update_peaks(sys, work, peaks: np.ndarray) -> None:
     """Peaks (max |·|) of reference-point accelerations, drive torque and normal
     forces from the last right-hand side evaluation."""
@@ -254,7 +254,7 @@ def _update_peaks(sys, work, peaks: np.ndarray) -> None:
             peaks[2 * nb + 1 + j] = v
 
 
-@numba.njit(cache=True)
+@kernel
 def _check_state(sys, work, opts, pen_bound, stats) -> int:
     """Sanity of the last evaluation: penetration and constraint violation bounds."""
     for j in range(work.jout.shape[0]):
@@ -269,7 +269,7 @@ def _check_state(sys, work, opts, pen_bound, stats) -> int:
     return OK
 
 
-@numba.njit(cache=True)
+@kernel
 def _sample(sys, work, mem, t0, h, times, rows, stats, slot, scratch) -> int:
     """Record every requested time in (t0, t0 + h] from the dense output."""
     n2 = 2 * sys.n
@@ -287,7 +287,7 @@ def _sample(sys, work, mem, t0, h, times, rows, stats, slot, scratch) -> int:
     return OK
 
 
-@numba.njit(cache=True)
+@kernel
 def integrate(
     sys,
     work,

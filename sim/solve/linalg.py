@@ -7,11 +7,12 @@ factorisation is both the fastest and the simplest choice (Golub & Van Loan,
 Matrix Computations, 4th ed., algorithm 4.2.1).
 """
 
-import numba
 import numpy as np
 
+from sim.jit import kernel
 
-@numba.njit(cache=True)
+
+@kernel
 def cholesky_in_place(a: np.ndarray, m: int) -> bool:
     """Overwrite the leading m×m block of the symmetric matrix `a` with its
     lower Cholesky factor L (a = L Lᵀ). Returns False if the block is not
@@ -35,7 +36,7 @@ def cholesky_in_place(a: np.ndarray, m: int) -> bool:
     return True
 
 
-@numba.njit(cache=True)
+@kernel
 def cholesky_solve_in_place(l: np.ndarray, m: int, b: np.ndarray) -> None:
     """Solve (L Lᵀ) x = b for x, overwriting b; L from `cholesky_in_place`."""
     for i in range(m):

@@ -4,9 +4,9 @@ The column order is defined once, by `column_layout`, and followed by
 `record_row`; `sim.results` decodes rows with the same layout.
 """
 
-import numba
 import numpy as np
 
+from sim.jit import kernel
 from sim.model.clearance import eccentricity, eccentricity_rate, guide_frame
 from sim.model.system import (
     OUT_FRICTION_FORCE,
@@ -65,7 +65,7 @@ def row_width(n_bodies: int, n_joints: int) -> int:
     return first + 1
 
 
-@numba.njit(cache=True)
+@kernel
 def reference_point(sys, b: int, x: np.ndarray, axis: int) -> float:
     """Component `axis` of body b's reference point, applied to q, q̇ or q̈ (x)."""
     acc = 0.0
@@ -74,7 +74,7 @@ def reference_point(sys, b: int, x: np.ndarray, axis: int) -> float:
     return acc
 
 
-@numba.njit(cache=True)
+@kernel
 def record_row(sys, work, mem: np.ndarray, t: float, y: np.ndarray, row: np.ndarray) -> int:
     """Evaluate the model at (t, y) and write one sample row; returns the
     right-hand side status."""
