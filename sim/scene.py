@@ -319,7 +319,7 @@ def _check_name(value: str, known: Iterable[str], where: str, what: str, source:
     known = list(known)
     if value not in known:
         raise SceneError(
-            f"scene {source}: '{where}' names unknown {what} '{value}'; known {what}s: "
+            f"scene {source}: '{where}' names unknown {what} '{value}'; accepted: "
             + ", ".join(known)
         )
 
