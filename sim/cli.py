@@ -17,7 +17,8 @@ from collections.abc import Sequence
 from sim import __version__
 
 
-def _add_scene_arguments(parser: argparse.ArgumentParser) -> None:
+def add_scene_arguments(parser: argparse.ArgumentParser) -> None:
+    """The scene name or path and the repeatable --set overrides."""
     parser.add_argument("scene", help="built-in scene name (sixbar, slider-crank) or YAML path")
     parser.add_argument(
         "--set",
@@ -64,7 +65,7 @@ def build_parser() -> argparse.ArgumentParser:
     sub = parser.add_subparsers(dest="command", required=True)
 
     run = sub.add_parser("run", help="simulate a scene to a netCDF file")
-    _add_scene_arguments(run)
+    add_scene_arguments(run)
     run.add_argument("-o", "--output", required=True, help="output netCDF path")
     run.add_argument("--ideal", action="store_true", help="every joint ideal (reference)")
     run.add_argument("--rigid", action="store_true", help="every link rigid (reference)")
@@ -72,7 +73,7 @@ def build_parser() -> argparse.ArgumentParser:
     run.set_defaults(func=_cmd_run)
 
     scene = sub.add_parser("scene", help="print the resolved scene as YAML")
-    _add_scene_arguments(scene)
+    add_scene_arguments(scene)
     scene.set_defaults(func=_cmd_scene)
 
     from sim.analysis.cli import register as register_analyze

@@ -13,6 +13,7 @@ import numpy as np
 import xarray as xr
 
 from sim import __version__
+from sim.cli import add_scene_arguments
 from sim.experiment.alignment import align_simulation
 from sim.experiment.errors import RecordingError
 from sim.experiment.metrics import compare
@@ -39,15 +40,7 @@ def register(subparsers: argparse._SubParsersAction) -> None:
         "synthesize",
         help="simulate a scene and record its slider acceleration with the sensor model",
     )
-    synthesize.add_argument("scene", help="scene name or path to a scene file")
-    synthesize.add_argument(
-        "--set",
-        dest="overrides",
-        action="append",
-        default=[],
-        metavar="KEY=VALUE",
-        help="scene override (repeatable), e.g. --set joints.A.clearance=0.3e-3",
-    )
+    add_scene_arguments(synthesize)
     synthesize.add_argument(
         "--sensor", type=Path, help="YAML file of sensor settings (default: built-in values)"
     )

@@ -49,7 +49,7 @@ class Work(NamedTuple):
     qdd: np.ndarray  # (n,)
     jout: np.ndarray  # (joints, N_JOINT_OUT) per clearance joint outputs
     scalars: np.ndarray  # (4,) see SC_*
-    beam_work: np.ndarray  # (n,) scratch for beam forces
+    scratch: np.ndarray  # (n,) scratch: beam forces, momenta
     stages: np.ndarray  # (7, ny) Runge–Kutta stages
     ytmp: np.ndarray  # (ny,)
     ynew: np.ndarray  # (ny,)
@@ -79,7 +79,7 @@ def make_work(system: System) -> Work:
         qdd=np.zeros(n),
         jout=np.zeros((n_clearance_joints(system), N_JOINT_OUT)),
         scalars=np.zeros(4),
-        beam_work=np.zeros(n),
+        scratch=np.zeros(n),
         stages=np.zeros((7, ny)),
         ytmp=np.zeros(ny),
         ynew=np.zeros(ny),
@@ -90,15 +90,15 @@ def make_work(system: System) -> Work:
 
 
 @kernel
-def _minv_times(sys, x: np.ndarray, out: np.ndarray) -> None:
-    """out = M⁻¹ x, one mass block at a time."""
+def block_times(sys, matrix: np.ndarray, x: np.ndarray, out: np.ndarray) -> None:
+    """out = A x for a matrix A with the mass matrix's block-diagonal pattern (M or M⁻¹)."""
     for b in range(sys.blk_start.shape[0]):
         s = sys.blk_start[b]
         e = sys.blk_end[b]
         for i in range(s, e):
             acc = 0.0
             for k in range(s, e):
-                acc += sys.mass_inv[i, k] * x[k]
+                acc += matrix[i, k] * x[k]
             out[i] = acc
 
 
@@ -111,7 +111,7 @@ def generalized_forces(sys, work, t: float, q: np.ndarray, qd: np.ndarray, mem: 
         gen[i] = sys.gravity_force[i]
     pr, ur = revolute_clearance_forces(sys, q, qd, mem, gen, work.jout)
     pt, ut = translational_clearance_forces(sys, q, qd, mem, gen, work.jout)
-    pb, us = beam_forces(sys, q, qd, gen, work.beam_work)
+    pb, us = beam_forces(sys, q, qd, gen, work.scratch)
     work.scalars[SC_DISSIPATED_POWER] = pr + pt + pb
     work.scalars[SC_CONTACT_ENERGY] = ur + ut
     work.scalars[SC_STRAIN_ENERGY] = us
@@ -125,7 +125,7 @@ def rhs(sys, work, mem: np.ndarray, t: float, y: np.ndarray, ydot: np.ndarray) -
     q = y[:n]
     qd = y[n : 2 * n]
     generalized_forces(sys, work, t, q, qd, mem)
-    _minv_times(sys, work.gen, work.minv_gen)
+    block_times(sys, sys.mass_inv, work.gen, work.minv_gen)
     qdd = work.qdd
     if m > 0:
         jac = work.jac
@@ -189,17 +189,13 @@ def rhs(sys, work, mem: np.ndarray, t: float, y: np.ndarray, ydot: np.ndarray) -
 
 
 @kernel
-def kinetic_energy(sys, qd: np.ndarray) -> float:
+def kinetic_energy(sys, work, qd: np.ndarray) -> float:
     """T = ½ q̇ᵀ M q̇ (J)."""
+    momentum = work.scratch
+    block_times(sys, sys.mass, qd, momentum)
     total = 0.0
-    for b in range(sys.blk_start.shape[0]):
-        s = sys.blk_start[b]
-        e = sys.blk_end[b]
-        for i in range(s, e):
-            acc = 0.0
-            for k in range(s, e):
-                acc += sys.mass[i, k] * qd[k]
-            total += qd[i] * acc
+    for i in range(sys.n):
+        total += qd[i] * momentum[i]
     return 0.5 * total
 
 

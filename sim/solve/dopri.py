@@ -236,6 +236,16 @@ def _flip(sys, mem, g: int, y: np.ndarray) -> None:
 
 
 @kernel
+def _flip_and_refresh(sys, work, mem, g: int, t: float, y: np.ndarray, stats) -> int:
+    """Apply the event of gap g at (t, y) and re-evaluate the first stage, which
+    the changed contact state invalidates."""
+    _flip(sys, mem, g, y)
+    stats[S_EVENTS] += 1
+    stats[S_NFEV] += 1
+    return rhs(sys, work, mem, t, y, work.stages[0])
+
+
+@kernel
 def _update_peaks(sys, work, peaks: np.ndarray) -> None:
     """Peaks (max |·|) of reference-point accelerations, drive torque and normal
     forces from the last right-hand side evaluation."""
@@ -363,11 +373,8 @@ def integrate(
                 if theta * hs <= hmin:
                     # Already across at the start of the step (a previous event
                     # ended a hair's breadth on the other side): flip now.
-                    _flip(sys, mem, g, y)
                     flips_at_t += 1
-                    stats[S_EVENTS] += 1
-                    s = rhs(sys, work, mem, t, y, k[0])
-                    stats[S_NFEV] += 1
+                    s = _flip_and_refresh(sys, work, mem, g, t, y, stats)
                     if s != OK:
                         diag[D_TIME] = t
                         return s
@@ -397,10 +404,7 @@ def integrate(
                 diag[D_TIME] = t
                 return NONFINITE
         if pending >= 0:
-            _flip(sys, mem, pending, y)
-            stats[S_EVENTS] += 1
-            s = rhs(sys, work, mem, t, y, k[0])
-            stats[S_NFEV] += 1
+            s = _flip_and_refresh(sys, work, mem, pending, t, y, stats)
             if s != OK:
                 diag[D_TIME] = t
                 return s

@@ -132,7 +132,7 @@ def record_row(sys, work, mem: np.ndarray, t: float, y: np.ndarray, row: np.ndar
     for i in range(sys.m):
         viol += work.phi[i] * work.phi[i]
     row[c] = np.sqrt(viol)
-    row[c + 1] = kinetic_energy(sys, qd)
+    row[c + 1] = kinetic_energy(sys, work, qd)
     row[c + 2] = potential_energy(sys, q)
     row[c + 3] = work.scalars[SC_STRAIN_ENERGY]
     row[c + 4] = work.scalars[SC_CONTACT_ENERGY]
