@@ -27,6 +27,10 @@ ATTRS = {
     "velocity": ("m s-1", "velocity of the body's reference point"),
     "acceleration": ("m s-2", "acceleration of the body's reference point"),
     "angle": ("rad", "body angle (beams: angle of the chord between end nodes)"),
+    "deflection": (
+        "m",
+        "mid-span transverse deflection from the chord of the end nodes (beams; 0 if rigid)",
+    ),
     "drive_torque": ("N m", "driving torque applied to the crank"),
     "eccentricity": ("m", "journal centre minus bearing centre; slider: x across, y along guide"),
     "eccentricity_rate": ("m s-1", "rate of the eccentricity"),
@@ -57,6 +61,7 @@ DIMS = {
     "velocity": ("time", "body", "axis"),
     "acceleration": ("time", "body", "axis"),
     "angle": ("time", "body"),
+    "deflection": ("time", "body"),
     "drive_torque": ("time",),
     "eccentricity": ("time", "joint", "axis"),
     "eccentricity_rate": ("time", "joint", "axis"),

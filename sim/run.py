@@ -23,7 +23,7 @@ from sim.model.system import (
     n_gaps,
 )
 from sim.results import build_dataset
-from sim.solve import dopri
+from sim.solve import stepping
 from sim.solve.dae import NONFINITE, SINGULAR, make_work, state_size
 from sim.solve.record import record_row, row_width
 
@@ -60,7 +60,7 @@ class Integration:
 
     def advance(self, t_end: float) -> int:
         """Integrate up to t_end; the status code of the compiled integrator."""
-        return dopri.integrate(
+        return stepping.integrate(
             self.system,
             self.work,
             self.mem,
@@ -101,22 +101,24 @@ def prepare(
     sec_t = np.arange(math.floor(n_rev + 1e-9) + 1) * period
     width = row_width(len(layout.bodies), len(layout.clearance_joints))
     solver = scene["solver"]
-    opts = np.zeros(dopri.N_OPTS)
-    opts[dopri.OPT_RTOL] = solver["rtol"]
-    opts[dopri.OPT_ATOL] = solver["atol"]
-    opts[dopri.OPT_HMAX] = solver["max_step_fraction"] * period
-    opts[dopri.OPT_HMIN] = 1e-14 * period
-    opts[dopri.OPT_VIOLATION_BOUND] = VIOLATION_BOUND * _shortest_dimension(scene)
-    opts[dopri.OPT_MAX_STEPS] = solver["max_steps"]
+    opts = np.zeros(stepping.N_OPTS)
+    opts[stepping.OPT_RTOL] = solver["rtol"]
+    opts[stepping.OPT_ATOL] = solver["atol"]
+    opts[stepping.OPT_HMAX] = solver["max_step_fraction"] * period
+    opts[stepping.OPT_HMIN] = 1e-14 * period
+    opts[stepping.OPT_VIOLATION_BOUND] = VIOLATION_BOUND * _shortest_dimension(scene)
+    opts[stepping.OPT_MAX_STEPS] = solver["max_steps"]
+    opts[stepping.OPT_METHOD] = stepping.METHODS[solver["method"]]
+    opts[stepping.OPT_RHO_INF] = solver["rho_inf"]
     pen_bound = np.concatenate(
         [
             PENETRATION_BOUND * system.rj_f[:, RJ_JOURNAL_RADIUS],
             PENETRATION_BOUND * system.tj_f[:, TJ_WIDTH],
         ]
     )
-    st = np.zeros(dopri.N_ST)
-    st[dopri.ST_H] = min(1e-5 * period, opts[dopri.OPT_HMAX])
-    st[dopri.ST_FACOLD] = 1e-4
+    st = np.zeros(stepping.N_ST)
+    st[stepping.ST_H] = min(1e-5 * period, opts[stepping.OPT_HMAX])
+    st[stepping.ST_FACOLD] = 1e-4
     integ = Integration(
         system=system,
         layout=layout,
@@ -131,12 +133,12 @@ def prepare(
         sec_rows=np.zeros((sec_t.size, width)),
         peaks=np.zeros(2 * len(layout.bodies) + 1 + len(layout.clearance_joints)),
         pen_bound=pen_bound,
-        stats=np.zeros(dopri.N_STATS, dtype=np.int64),
+        stats=np.zeros(stepping.N_STATS, dtype=np.int64),
         diag=np.zeros(2),
     )
     # The integrator samples times in (t, t + h]; t = 0 is recorded here.
     assert state_size(system) == y.size
-    for rows, slot in ((integ.out_rows, dopri.S_OUT), (integ.sec_rows, dopri.S_SEC)):
+    for rows, slot in ((integ.out_rows, stepping.S_OUT), (integ.sec_rows, stepping.S_SEC)):
         record_row(system, integ.work, integ.mem, 0.0, y, rows[0])
         integ.stats[slot] = 1
     return integ
@@ -144,13 +146,13 @@ def prepare(
 
 def diagnose(integ: Integration, status: int) -> str:
     """A failure message: the time, the joint and the likely cause."""
-    t = integ.diag[dopri.D_TIME]
+    t = integ.diag[stepping.D_TIME]
     joints = integ.layout.clearance_joints
     jout = integ.work.jout
     busiest = joints[int(np.argmax(jout[:, 1]))] if len(joints) else None
     at = f"at t = {t:.6g} s"
-    if status == dopri.PENETRATION:
-        j = int(integ.stats[dopri.S_CULPRIT])
+    if status == stepping.PENETRATION:
+        j = int(integ.stats[stepping.S_CULPRIT])
         hint = ""
         is_slider = j >= integ.system.rj_pts.shape[0]
         if is_slider and integ.system.contact[CT_SLIDER_LAW] == SLIDER_LAW_PAPER:
@@ -164,17 +166,17 @@ def diagnose(integ: Integration, status: int) -> str:
             f"{integ.pen_bound[j]:.3g} m ({PENETRATION_BOUND:.0%} of its size): the contact is too "
             f"soft for the load, or the clearance law met a velocity it cannot stop{hint}"
         )
-    if status == dopri.VIOLATION:
+    if status == stepping.VIOLATION:
         return (
             f"{at}: ideal constraints drifted beyond "
-            f"{integ.opts[dopri.OPT_VIOLATION_BOUND]:.3g} m; "
+            f"{integ.opts[stepping.OPT_VIOLATION_BOUND]:.3g} m; "
             "the mechanism may pass a singular (locked) position; raise solver.baumgarte_* or "
             "tighten solver.rtol"
         )
-    if status == dopri.STEP_COLLAPSE:
+    if status == stepping.STEP_COLLAPSE:
         where = f"; the largest contact force is at joint '{busiest}'" if busiest else ""
         return (
-            f"{at}: the step size collapsed below {integ.opts[dopri.OPT_HMIN]:.3g} s{where}: "
+            f"{at}: the step size collapsed below {integ.opts[stepping.OPT_HMIN]:.3g} s{where}: "
             "a force discontinuity or stiffness the explicit method cannot pass"
         )
     if status == SINGULAR:
@@ -185,8 +187,8 @@ def diagnose(integ: Integration, status: int) -> str:
     if status == NONFINITE:
         where = f" (largest contact force at joint '{busiest}')" if busiest else ""
         return f"{at}: the state became non-finite{where}: the step outran a stiff force"
-    if status == dopri.MAX_STEPS:
-        return f"{at}: solver.max_steps = {int(integ.opts[dopri.OPT_MAX_STEPS])} reached"
+    if status == stepping.MAX_STEPS:
+        return f"{at}: solver.max_steps = {int(integ.opts[stepping.OPT_MAX_STEPS])} reached"
     return f"{at}: integrator status {status}"
 
 
@@ -239,13 +241,13 @@ def simulate(
     while t < t_end:
         t = min(t + chunk, t_end)
         status = integ.advance(t)
-        if status != dopri.OK:
+        if status != stepping.OK:
             bar.close()
             raise SimulationError(f"scene '{scene['name']}': " + diagnose(integ, status))
         bar.update(t)
     bar.close()
     wall = time.perf_counter() - wall0
-    recorded = (int(integ.stats[dopri.S_OUT]), int(integ.stats[dopri.S_SEC]))
+    recorded = (int(integ.stats[stepping.S_OUT]), int(integ.stats[stepping.S_SEC]))
     if recorded != (integ.out_t.size, integ.sec_t.size):
         raise SimulationError(
             f"scene '{scene['name']}': the integrator recorded {recorded} of "
@@ -258,10 +260,12 @@ def simulate(
         "model_ideal": int(ideal),
         "model_rigid": int(rigid),
         "solver_method": scene["solver"]["method"],
-        "solver_accepted_steps": int(stats[dopri.S_ACCEPTED]),
-        "solver_rejected_steps": int(stats[dopri.S_REJECTED]),
-        "solver_function_evaluations": int(stats[dopri.S_NFEV]),
-        "solver_contact_events": int(stats[dopri.S_EVENTS]),
+        "solver_accepted_steps": int(stats[stepping.S_ACCEPTED]),
+        "solver_rejected_steps": int(stats[stepping.S_REJECTED]),
+        "solver_function_evaluations": int(stats[stepping.S_NFEV]),
+        "solver_contact_events": int(stats[stepping.S_EVENTS]),
+        "solver_iteration_matrices": int(stats[stepping.S_JACOBIANS]),
+        "solver_newton_failures": int(stats[stepping.S_NEWTON_FAILURES]),
         "solver_wall_time_s": wall,
         "real_time_factor": t_end / wall if wall > 0 else float("inf"),
         "simulated_time_s": t_end,

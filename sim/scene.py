@@ -85,8 +85,9 @@ BAR = {
 BLOCK = {**BODY_COMMON, "size": Field("vector3", 0.0, 10.0, open_min=True, unit="m")}
 HINT = {"position": Field("vector2", -1e3, 1e3, unit="m"), "angle_deg": _num(-720, 720, "deg")}
 DAMPING = {
-    "kind": Field("str", choices=("none", "stiffness")),
+    "kind": Field("str", choices=("none", "stiffness", "modal")),
     "coefficient": _num(0.0, 1.0, "s", required=False),
+    "ratio": _num(0.0, 1.0, required=False),
 }
 JOINT_COMMON = {
     "type": Field("str", choices=("revolute", "translational", "weld")),
@@ -122,9 +123,11 @@ CONTACT = {
 SIMULATION = {
     "revolutions": _num(0.0, 1e6, "revolutions", open_min=True),
     "output_per_revolution": Field("int", 1, 1_000_000),
+    "beam_start": Field("str", choices=("quasi-static", "straight")),
 }
 SOLVER = {
-    "method": Field("str", choices=("dopri5",)),
+    "method": Field("str", choices=("dopri5", "generalized_alpha")),
+    "rho_inf": _num(0.0, 1.0),
     "rtol": _num(1e-13, 1e-1),
     "atol": _num(1e-16, 1e-1),
     "max_step_fraction": _num(1e-7, 1.0, "crank periods", open_min=True),
@@ -370,6 +373,12 @@ def validate_scene(scene: dict, source: str = "<scene>") -> None:
                 )
         if "damping" in body:
             _check_section(body["damping"], DAMPING, f"{where}.damping", source)
+            needed = {"stiffness": "coefficient", "modal": "ratio"}.get(body["damping"]["kind"])
+            if needed and needed not in body["damping"]:
+                raise SceneError(
+                    f"scene {source}: '{where}.damping.kind' = '{body['damping']['kind']}' "
+                    f"needs '{where}.damping.{needed}' ({_describe(DAMPING[needed])})"
+                )
     body_names = [GROUND, *bodies]
     for name, joint in scene["joints"].items():
         _validate_joint(scene, name, joint, body_names, source)

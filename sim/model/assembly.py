@@ -75,6 +75,26 @@ def body_mass_properties(body: dict, material: dict) -> tuple[float, float]:
     return body.get("mass", m), body.get("inertia", j)
 
 
+def stiffness_damping_coefficient(body: dict, material: dict) -> float:
+    """The stiffness-proportional (Rayleigh) damping coefficient β (s) of a beam.
+
+    `damping.kind: stiffness` gives β directly. `damping.kind: modal` gives a
+    damping ratio ζ at the link's first bending mode, pinned at both ends,
+    ω₁ = (π/L)² √(EI/ρA) (Euler–Bernoulli), so β = 2ζ/ω₁; being
+    stiffness-proportional, a mode of frequency ω gets ζ ω/ω₁."""
+    damping = body.get("damping", {"kind": "none"})
+    if damping["kind"] == "stiffness":
+        return damping["coefficient"]
+    if damping["kind"] == "modal":
+        width, height = body["section"]
+        area = width * height
+        omega1 = (math.pi / body["length"]) ** 2 * math.sqrt(
+            material["youngs_modulus"] * width * height**3 / 12.0 / (material["density"] * area)
+        )
+        return 2.0 * damping["ratio"] / omega1
+    return 0.0
+
+
 def _local_points(body: dict) -> dict[str, tuple[float, float]]:
     pts = {"centre": (0.0, 0.0)}
     if body["shape"] == "bar":
@@ -135,8 +155,7 @@ def build_system(scene: dict, *, ideal: bool = False, rigid: bool = False) -> tu
             ref_idx[b] = o + 4 * el + np.array([0, 2, 4, 6])
             ref_coef[b] = shape
             ang_idx[b] = (o, o + 4 * ne)
-            damping = body.get("damping", {"kind": "none"})
-            beta = damping.get("coefficient", 0.0) if damping["kind"] == "stiffness" else 0.0
+            beta = stiffness_damping_coefficient(body, mat)
             beam_off.append(o)
             beam_nel.append(ne)
             beam_f.append(

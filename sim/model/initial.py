@@ -3,15 +3,17 @@
 Positions: Newton–Raphson on Φ(q, t0) = 0 from the scene's hints, with the
 minimum-norm correction Δq = −Φ_q⁺ Φ so that free coordinates stay near their
 hints (Nikravesh 1988, ch. 4; Haug 1989, ch. 3). Velocities: the minimum-norm
-solution of Φ_q q̇ = ν. Solved on the all-ideal, all-rigid mechanism, so every
-clearance joint starts centred (zero eccentricity), as MODEL.md says; beams are
-then laid straight along their rigid pose.
+solution of Φ_q q̇ = ν; accelerations likewise from Φ_q q̈ = γ. Solved on the
+all-ideal, all-rigid mechanism, so every clearance joint starts centred (zero
+eccentricity), as MODEL.md says; beams are then laid along their rigid pose and,
+by default, deformed to carry its loads (`quasi_static_beams`).
 """
 
 import math
 
 import numpy as np
 
+from sim.model import ancf
 from sim.model.assembly import AssemblyError, Layout, build_system
 from sim.model.constraints import constraint_terms
 from sim.model.system import System
@@ -66,27 +68,117 @@ def rigid_initial_state(scene: dict) -> tuple[np.ndarray, np.ndarray, System, La
     return q, solve_velocities(system, q), system, layout
 
 
-def initial_state(scene: dict, system: System, layout: Layout) -> tuple[np.ndarray, np.ndarray]:
-    """q and q̇ at t = 0 for `system`: the rigid assembly, with every beam laid
-    straight along its rigid pose and moving with it."""
-    q_r, qd_r, _, rigid_layout = rigid_initial_state(scene)
-    q = np.zeros(system.n)
-    qd = np.zeros(system.n)
+def solve_accelerations(system: System, q: np.ndarray, qd: np.ndarray, t: float = 0.0):
+    """q̈ with Φ_q q̈ = γ (minimum norm): the acceleration analysis of a driven
+    mechanism with no free degree of freedom."""
+    jac = np.zeros((system.m, system.n))
+    gamma = np.zeros(system.m)
+    constraint_terms(system, t, q, qd, np.zeros(system.m), jac, gamma, np.zeros(system.m))
+    return np.linalg.lstsq(jac, gamma, rcond=None)[0]
+
+
+def _rigid_motion(scene: dict, layout: Layout) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """q, q̇ and q̈ of the all-ideal, all-rigid mechanism at t = 0 in the
+    coordinates of `layout`: each beam laid straight along its rigid pose, its
+    nodes moving with the rigid link (r = R + u e, r' = e with e = (cos θ, sin θ),
+    so ṙ = Ṙ + u θ̇ e⊥, r̈ = R̈ + u (θ̈ e⊥ − θ̇² e), and likewise r', e⊥ = (−sin θ, cos θ))."""
+    q_r, qd_r, system_r, rigid_layout = rigid_initial_state(scene)
+    qdd_r = solve_accelerations(system_r, q_r, qd_r)
+    n = sum(4 * (layout.elements[b] + 1) if layout.is_beam[b] else 3 for b in layout.bodies)
+    q, qd, qdd = np.zeros(n), np.zeros(n), np.zeros(n)
     for name in layout.bodies:
         r = rigid_layout.offset[name]
-        x, y, theta = q_r[r : r + 3]
-        vx, vy, w = qd_r[r : r + 3]
         o = layout.offset[name]
         if not layout.is_beam[name]:
-            q[o : o + 3] = (x, y, theta)
-            qd[o : o + 3] = (vx, vy, w)
+            q[o : o + 3] = q_r[r : r + 3]
+            qd[o : o + 3] = qd_r[r : r + 3]
+            qdd[o : o + 3] = qdd_r[r : r + 3]
             continue
+        x, y, theta = q_r[r : r + 3]
+        vx, vy, w = qd_r[r : r + 3]
+        ax, ay, alpha = qdd_r[r : r + 3]
+        e = np.array([math.cos(theta), math.sin(theta)])
+        e_perp = np.array([-e[1], e[0]])
         length = scene["bodies"][name]["length"]
         ne = layout.elements[name]
-        c, s = math.cos(theta), math.sin(theta)
         for i in range(ne + 1):
             u = -0.5 * length + i * length / ne
             k = o + 4 * i
-            q[k : k + 4] = (x + c * u, y + s * u, c, s)
-            qd[k : k + 4] = (vx - w * s * u, vy + w * c * u, -w * s, w * c)
+            q[k : k + 4] = (*(np.array([x, y]) + u * e), *e)
+            qd[k : k + 4] = (*(np.array([vx, vy]) + u * w * e_perp), *(w * e_perp))
+            turn = alpha * e_perp - w * w * e
+            qdd[k : k + 4] = (*(np.array([ax, ay]) + u * turn), *turn)
+    return q, qd, qdd
+
+
+def _beam_elastic(system: System, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Elastic forces F (n,) and their Jacobian K (n, n) of every beam at q."""
+    force = np.zeros(system.n)
+    stiffness = np.zeros((system.n, system.n))
+    for b, o in enumerate(system.beam_off):
+        size = 4 * (system.beam_nel[b] + 1)
+        block = slice(o, o + size)
+        consts = (
+            system.beam_dshape[b],
+            system.beam_axial_w[b],
+            system.beam_d2shape[b],
+            system.beam_bending_w[b],
+        )
+        ancf.beam_elastic_forces(q[block], *consts, force[block])
+        k = np.zeros((size, size))
+        ancf.beam_elastic_jacobian(q[block], *consts, k)
+        stiffness[block, block] = k
+    return force, stiffness
+
+
+def quasi_static_beams(
+    scene: dict, q: np.ndarray, qd: np.ndarray, qdd: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """Beams deformed so that they carry the rigid mechanism's loads at t = 0.
+
+    Solves, on the mechanism with every joint ideal, for the coordinates q and
+    multipliers λ with
+        F(q) + Φ_q(q)ᵀ λ = Q_g − M q̈_rigid,   Φ(q, 0) = 0,
+    the elastic forces F balancing gravity, the inertia of the prescribed rigid
+    motion and the joint reactions (MODEL.md, "Beams need care"); Newton with the
+    matrix [K, Φ_qᵀ; Φ_q, 0], K = ∂F/∂q. Velocities are the rigid field made
+    consistent with the deformed pose (minimum-norm correction of Φ_q q̇ = ν).
+    The flexible model then starts with the rigid model's accelerations, to
+    within the static deflections."""
+    system, _ = build_system(scene, ideal=True)
+    load = system.gravity_force - system.mass @ qdd
+    q = q.copy()
+    lam = np.zeros(system.m)
+    n = system.n
+    for _ in range(50):
+        phi, jac, _ = constraint_values(system, q, np.zeros(n), 0.0)
+        force, stiffness = _beam_elastic(system, q)
+        residual = np.concatenate([force + jac.T @ lam - load, phi])
+        matrix = np.block([[stiffness, jac.T], [jac, np.zeros((system.m, system.m))]])
+        step = np.linalg.solve(matrix, -residual)
+        q += step[:n]
+        lam += step[n:]
+        # Converged when the correction reaches round-off of the coordinates
+        # (the residual itself stalls near EA·1e-16, about 1e-7 N here).
+        if np.abs(step[:n]).max() < 1e-13:
+            break
+    else:
+        raise AssemblyError(
+            "the quasi-static beam deformation at the initial crank angle did not converge "
+            "in 50 Newton iterations; start the beams straight (simulation.beam_start: "
+            "straight) or check the beams' stiffness"
+        )
+    _, jac, nu = constraint_values(system, q, qd, 0.0)
+    qd = qd - np.linalg.lstsq(jac, jac @ qd - nu, rcond=None)[0]
+    return q, qd
+
+
+def initial_state(scene: dict, system: System, layout: Layout) -> tuple[np.ndarray, np.ndarray]:
+    """q and q̇ at t = 0 for `system`: the rigid assembly with every clearance
+    joint centred; beams pre-deformed to the quasi-static solution
+    (`simulation.beam_start: quasi-static`) or straight along their rigid pose
+    (`straight`), moving with it."""
+    q, qd, qdd = _rigid_motion(scene, layout)
+    if any(layout.is_beam.values()) and scene["simulation"]["beam_start"] == "quasi-static":
+        q, qd = quasi_static_beams(scene, q, qd, qdd)
     return q, qd

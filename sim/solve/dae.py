@@ -24,7 +24,14 @@ from sim.jit import kernel
 from sim.model.beams import beam_forces
 from sim.model.clearance import revolute_clearance_forces, translational_clearance_forces
 from sim.model.constraints import constraint_terms
-from sim.model.system import N_JOINT_OUT, System, n_clearance_joints, n_gaps
+from sim.model.system import (
+    N_JOINT_OUT,
+    POINT_NODE,
+    POINT_RIGID,
+    System,
+    n_clearance_joints,
+    n_gaps,
+)
 from sim.solve.linalg import cholesky_in_place, cholesky_solve_in_place
 
 # Status codes of a right-hand side evaluation and of the integrator.
@@ -56,6 +63,21 @@ class Work(NamedTuple):
     yint: np.ndarray  # (ny,) interpolated state of an output sample
     dense: np.ndarray  # (5, ny) dense-output coefficients of the last step
     gaps: np.ndarray  # (ngaps,)
+    # The implicit method (sim.solve.galpha, sim.solve.tangent):
+    it_mat: np.ndarray  # (n + m, n + m) Newton iteration matrix, then its LU factors
+    it_piv: np.ndarray  # (n + m,) pivots
+    it_rhs: np.ndarray  # (n + m,) Newton right-hand side, then the correction
+    it_fresh: np.ndarray  # (1,) 1 while the factors in it_mat are usable, else 0
+    ga_acc: np.ndarray  # (n,) pseudo-acceleration a_n at the step's start
+    ga_acc_new: np.ndarray  # (n,) a_{n+1}
+    ga_lam: np.ndarray  # (m,) multipliers λ_n
+    ga_lam_new: np.ndarray  # (m,) λ_{n+1}
+    beam_kq: np.ndarray  # (s, s) one beam's stiffness Jacobian, s its largest size
+    beam_kv: np.ndarray  # (s, s) one beam's damping Jacobian
+    fd_base: np.ndarray  # (n,) contact forces at the unperturbed state
+    fd_gen: np.ndarray  # (n,) contact forces at a perturbed state
+    fd_jout: np.ndarray  # (joints, N_JOINT_OUT) their discarded outputs
+    contact_coords: np.ndarray  # coordinates the clearance contact forces depend on
 
 
 def state_size(system: System) -> int:
@@ -63,9 +85,25 @@ def state_size(system: System) -> int:
     return 2 * system.n + 2
 
 
+def contact_coordinates(system: System) -> np.ndarray:
+    """Sorted coordinates of the bodies and nodes that clearance joints touch."""
+    coords = set()
+    for pts in system.rj_pts:
+        for k in pts:
+            o = int(system.pt_off[k])
+            if system.pt_kind[k] == POINT_RIGID:
+                coords.update(range(o, o + 3))
+            elif system.pt_kind[k] == POINT_NODE:
+                coords.update(range(o, o + 2))
+    for o in system.tj_off:
+        coords.update(range(int(o), int(o) + 3))
+    return np.array(sorted(coords), dtype=np.int64)
+
+
 def make_work(system: System) -> Work:
     """Allocate the scratch arrays for `system`."""
     n, m, ny = system.n, system.m, state_size(system)
+    beam_size = 4 * (int(system.beam_nel.max()) + 1) if system.beam_nel.size else 0
     return Work(
         phi=np.zeros(m),
         jac=np.zeros((m, n)),
@@ -86,6 +124,20 @@ def make_work(system: System) -> Work:
         yint=np.zeros(ny),
         dense=np.zeros((5, ny)),
         gaps=np.zeros(n_gaps(system)),
+        it_mat=np.zeros((n + m, n + m)),
+        it_piv=np.zeros(n + m, dtype=np.int64),
+        it_rhs=np.zeros(n + m),
+        it_fresh=np.zeros(1),
+        ga_acc=np.zeros(n),
+        ga_acc_new=np.zeros(n),
+        ga_lam=np.zeros(m),
+        ga_lam_new=np.zeros(m),
+        beam_kq=np.zeros((beam_size, beam_size)),
+        beam_kv=np.zeros((beam_size, beam_size)),
+        fd_base=np.zeros(n),
+        fd_gen=np.zeros(n),
+        fd_jout=np.zeros((n_clearance_joints(system), N_JOINT_OUT)),
+        contact_coords=contact_coordinates(system),
     )
 
 

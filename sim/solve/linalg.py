@@ -49,3 +49,57 @@ def cholesky_solve_in_place(l: np.ndarray, m: int, b: np.ndarray) -> None:
         for k in range(i + 1, m):
             s -= l[k, i] * b[k]
         b[i] = s / l[i, i]
+
+
+@kernel
+def lu_in_place(a: np.ndarray, piv: np.ndarray) -> bool:
+    """Overwrite the square matrix `a` with its LU factors (unit lower L below the
+    diagonal, U on and above), partial pivoting by rows recorded in `piv`
+    (Golub & Van Loan, algorithm 3.4.1). For the indefinite, unsymmetric Newton
+    matrices of the implicit integrator. Returns False on an exactly zero pivot."""
+    size = a.shape[0]
+    for k in range(size):
+        p = k
+        big = abs(a[k, k])
+        for i in range(k + 1, size):
+            if abs(a[i, k]) > big:
+                big = abs(a[i, k])
+                p = i
+        piv[k] = p
+        if big == 0.0:
+            return False
+        if p != k:
+            for j in range(size):
+                tmp = a[k, j]
+                a[k, j] = a[p, j]
+                a[p, j] = tmp
+        inv = 1.0 / a[k, k]
+        for i in range(k + 1, size):
+            f = a[i, k] * inv
+            a[i, k] = f
+            if f != 0.0:
+                for j in range(k + 1, size):
+                    a[i, j] -= f * a[k, j]
+    return True
+
+
+@kernel
+def lu_solve_in_place(lu: np.ndarray, piv: np.ndarray, b: np.ndarray) -> None:
+    """Solve A x = b for x, overwriting b; A's factors from `lu_in_place`."""
+    size = lu.shape[0]
+    for k in range(size):
+        p = piv[k]
+        if p != k:
+            tmp = b[k]
+            b[k] = b[p]
+            b[p] = tmp
+    for i in range(size):
+        s = b[i]
+        for k in range(i):
+            s -= lu[i, k] * b[k]
+        b[i] = s
+    for i in range(size - 1, -1, -1):
+        s = b[i]
+        for k in range(i + 1, size):
+            s -= lu[i, k] * b[k]
+        b[i] = s / lu[i, i]

@@ -7,8 +7,10 @@ The column order is defined once, by `column_layout`, and followed by
 import numpy as np
 
 from sim.jit import kernel
+from sim.model import ancf
 from sim.model.clearance import eccentricity, eccentricity_rate, guide_frame
 from sim.model.system import (
+    BM_ELEMENT_LENGTH,
     OUT_FRICTION_FORCE,
     OUT_NORMAL_FORCE,
     OUT_PENETRATION,
@@ -35,6 +37,7 @@ def column_layout(n_bodies: int, n_joints: int) -> dict[str, tuple[int, tuple[in
         "velocity": (n_bodies, 2),
         "acceleration": (n_bodies, 2),
         "angle": (n_bodies,),
+        "deflection": (n_bodies,),
         "drive_torque": (),
         "eccentricity": (n_joints, 2),
         "eccentricity_rate": (n_joints, 2),
@@ -75,6 +78,19 @@ def reference_point(sys, b: int, x: np.ndarray, axis: int) -> float:
 
 
 @kernel
+def beam_midspan_deflection(q: np.ndarray, sys, b: int) -> float:
+    """Mid-span deflection (m) of body b, a beam, from the chord of its end nodes."""
+    i0 = sys.ang_idx[b, 0]
+    k = 0
+    while sys.beam_off[k] != i0:
+        k += 1
+    size = 4 * (sys.beam_nel[k] + 1)
+    return ancf.beam_midspan_deflection(
+        q[i0 : i0 + size], sys.beam_nel[k], sys.beam_f[k, BM_ELEMENT_LENGTH]
+    )
+
+
+@kernel
 def record_row(sys, work, mem: np.ndarray, t: float, y: np.ndarray, row: np.ndarray) -> int:
     """Evaluate the model at (t, y) and write one sample row; returns the
     right-hand side status."""
@@ -99,6 +115,11 @@ def record_row(sys, work, mem: np.ndarray, t: float, y: np.ndarray, row: np.ndar
             row[c] = np.arctan2(q[i1 + 1] - q[i0 + 1], q[i1] - q[i0])
         else:
             row[c] = q[i0]
+        c += 1
+    for b in range(nb):
+        row[c] = 0.0
+        if sys.body_is_beam[b] == 1:
+            row[c] = beam_midspan_deflection(q, sys, b)
         c += 1
     row[c] = work.scalars[SC_DRIVE_TORQUE]
     c += 1

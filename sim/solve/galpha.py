@@ -1,0 +1,250 @@
+"""Generalized-α: one implicit step of the constrained equations of motion.
+
+The index-3 form of Arnold & Brüls (Multibody Syst. Dyn. 18, 2007) of the
+generalized-α method of Chung & Hulbert (J. Appl. Mech. 60, 1993): at
+t_{n+1} = t_n + h it solves
+
+    M q̈ + Φ_qᵀ λ = Q(q, q̇, t)        (Q: gravity, contact, −elastic, −damping)
+    Φ(q, t) = 0                       (position level: no drift, no Baumgarte)
+
+with Newmark's relations through the pseudo-acceleration a,
+    (1 − α_m) a_{n+1} + α_m a_n = (1 − α_f) q̈_{n+1} + α_f q̈_n,
+    q_{n+1} = q_n + h q̇_n + h² ((½ − β) a_n + β a_{n+1}),
+    q̇_{n+1} = q̇_n + h ((1 − γ) a_n + γ a_{n+1}),
+and the parameters from the spectral radius at infinity ρ∞ ∈ [0, 1]
+(`solver.rho_inf`): α_m = (2ρ∞ − 1)/(ρ∞ + 1), α_f = ρ∞/(ρ∞ + 1),
+γ = ½ − α_m + α_f, β = ¼ (1 − α_m + α_f)². Second order; modes with ω h ≫ 1
+(the axial modes of short stiff beam elements) are damped by the factor ρ∞
+per step, the motion of interest (ω h ≪ 1) is not.
+
+Newton on (q_{n+1}, λ_{n+1}) with the iteration matrix, scaled by β h² so
+that its blocks are of one order (Arnold & Brüls, sec. 4):
+
+    [ M (1 − α_m)/(1 − α_f) + γ h C_t + β h² K_t   Φ_qᵀ ] [ Δq       ]   [ −β h² r ]
+    [ Φ_q                                           0    ] [ β h² Δλ ] = [ −Φ      ]
+
+with r = M q̈ + Φ_qᵀ λ − Q, K_t = −∂Q/∂q and C_t = −∂Q/∂q̇ (`sim.solve.tangent`);
+factored once per step (simplified Newton), convergence judged by the rate of
+the corrections (Hairer & Wanner, Solving ODEs II, IV.8).
+
+Step control: the local error of q is estimated as (β − 1/6) h² (q̈_{n+1} − q̈_n)
+(Zienkiewicz & Xie, Earthquake Eng. Struct. Dyn. 20, 1991; Géradin & Cardona,
+Flexible Multibody Dynamics, 2001, ch. 11), of order h³. The continuous
+extension over the step is the cubic Hermite interpolant of (q, q̇) and (q̇, q̈).
+The drive work and dissipated energy are integrated by the trapezoidal rule.
+"""
+
+import numpy as np
+
+from sim.jit import kernel
+from sim.model.constraints import constraint_terms
+from sim.solve.dae import (
+    OK,
+    SC_DISSIPATED_POWER,
+    SC_DRIVE_TORQUE,
+    SINGULAR,
+    block_times,
+    generalized_forces,
+)
+from sim.solve.dense import hermite_coefficients
+from sim.solve.linalg import lu_in_place, lu_solve_in_place
+from sim.solve.tangent import iteration_matrix
+
+MAX_NEWTON = 7
+"""Newton iterations per step before the step is retried shorter."""
+NEWTON_TOL = 0.1
+"""Newton stops when the residual is below this share of the tolerance (the κ of
+Hairer & Wanner, 0.01–0.1). The residual, not the correction of q, is tested:
+q̈ and λ follow from q with a factor 1/(β h²), so a q converged to a share of
+atol can leave forces and accelerations wrong by tens of newtons."""
+SAFE = 0.9
+
+
+@kernel
+def coefficients(rho_inf: float) -> tuple[float, float, float, float]:
+    """(α_m, α_f, β, γ) of Chung & Hulbert for the spectral radius ρ∞."""
+    am = (2.0 * rho_inf - 1.0) / (rho_inf + 1.0)
+    af = rho_inf / (rho_inf + 1.0)
+    gamma = 0.5 - am + af
+    beta = 0.25 * (1.0 - am + af) ** 2
+    return am, af, beta, gamma
+
+
+@kernel
+def start(sys, work) -> None:
+    """Start from the evaluation in work (stages[0] = ẏ_0, rhs = λ_0): a_0 = q̈_0."""
+    n = sys.n
+    for i in range(n):
+        work.ga_acc[i] = work.stages[0, n + i]
+    for r in range(sys.m):
+        work.ga_lam[r] = work.rhs[r]
+
+
+@kernel
+def accept(work) -> None:
+    """Make the step just computed the start of the next: a_n, λ_n."""
+    for i in range(work.ga_acc.shape[0]):
+        work.ga_acc[i] = work.ga_acc_new[i]
+    for r in range(work.ga_lam.shape[0]):
+        work.ga_lam[r] = work.ga_lam_new[r]
+
+
+@kernel
+def _scaled_rms(x: np.ndarray, ref0: np.ndarray, ref1: np.ndarray, rtol: float, atol: float):
+    """RMS of x_i / (atol + rtol max(|ref0_i|, |ref1_i|))."""
+    total = 0.0
+    for i in range(x.shape[0]):
+        sc = atol + rtol * max(abs(ref0[i]), abs(ref1[i]))
+        total += (x[i] / sc) ** 2
+    return np.sqrt(total / x.shape[0])
+
+
+@kernel
+def _residual(sys, work, mem, t, q, v, xdd, lam, bh2, rtol, atol) -> float:
+    """The scaled Newton right-hand side into work.it_rhs, −β h² r and −Φ, with
+    r = M q̈ + Φ_qᵀ λ − Q, from a fresh evaluation at (t, q, v); returns the size
+    of the residual against the tolerance: force rows against rtol times the
+    size of the terms they balance (a floor of 1e-3 of the largest keeps rows
+    that balance nothing from demanding round-off), constraint rows against atol."""
+    n = sys.n
+    m = sys.m
+    x = work.it_rhs
+    generalized_forces(sys, work, t, q, v, mem)
+    constraint_terms(sys, t, q, v, work.phi, work.jac, work.gamma, work.nu)
+    block_times(sys, sys.mass, xdd, work.scratch)
+    largest = 0.0
+    for i in range(n):
+        inertia = work.scratch[i]
+        reaction = 0.0
+        for r in range(m):
+            reaction += work.jac[r, i] * lam[r]
+        x[i] = -bh2 * (inertia + reaction - work.gen[i])
+        scale = abs(inertia) + abs(reaction) + abs(work.gen[i])
+        work.scratch[i] = scale
+        largest = max(largest, scale)
+    total = 0.0
+    for i in range(n):
+        total += (x[i] / (bh2 * rtol * (work.scratch[i] + 1e-3 * largest) + 1e-300)) ** 2
+    for r in range(m):
+        x[n + r] = -work.phi[r]
+        total += (work.phi[r] / atol) ** 2
+    return np.sqrt(total / (n + m))
+
+
+@kernel
+def _newton(sys, work, mem, t, h, y, rtol, atol, rho_inf, factor: bool):
+    """Predict the state at t + h, then correct it by simplified Newton with the
+    factors in work.it_mat, refreshed first when `factor`, until the residual of
+    the equations of motion and constraints is within NEWTON_TOL of the
+    tolerance. Returns (status, converged, force evaluations, iteration
+    matrices, solves); on convergence work holds the evaluation at the new state."""
+    n = sys.n
+    m = sys.m
+    am, af, beta, gamma = coefficients(rho_inf)
+    k0 = work.stages[0]
+    q = work.ynew[:n]
+    v = work.ynew[n : 2 * n]
+    xdd = work.qdd
+    a_old = work.ga_acc
+    lam = work.ga_lam_new
+    # Predictor: the acceleration carried over.
+    for i in range(n):
+        xdd[i] = k0[n + i]
+        a_new = ((1.0 - af) * xdd[i] + af * k0[n + i] - am * a_old[i]) / (1.0 - am)
+        v[i] = y[n + i] + h * ((1.0 - gamma) * a_old[i] + gamma * a_new)
+        q[i] = y[i] + h * y[n + i] + h * h * ((0.5 - beta) * a_old[i] + beta * a_new)
+    for r in range(m):
+        lam[r] = work.ga_lam[r]
+    tn = t + h
+    bh2 = beta * h * h
+    v_per_q = gamma / (beta * h)
+    a_per_q = (1.0 - am) / (bh2 * (1.0 - af))
+    x = work.it_rhs
+    matrices = 0
+    previous = np.inf
+    for it in range(MAX_NEWTON + 1):
+        size = _residual(sys, work, mem, tn, q, v, xdd, lam, bh2, rtol, atol)
+        if size <= NEWTON_TOL:
+            return OK, True, it + 1, matrices, it
+        if it == MAX_NEWTON or not size < previous:
+            break  # out of iterations, diverging or not finite
+        previous = size
+        if factor and it == 0:
+            iteration_matrix(sys, work, mem, tn, q, v, (1.0 - am) / (1.0 - af), gamma * h, bh2)
+            matrices = 1
+            work.it_fresh[0] = 1.0
+            if not lu_in_place(work.it_mat, work.it_piv):
+                work.it_fresh[0] = 0.0
+                return SINGULAR, False, it + 1, matrices, it
+        lu_solve_in_place(work.it_mat, work.it_piv, x)
+        for i in range(n):
+            q[i] += x[i]
+            v[i] += v_per_q * x[i]
+            xdd[i] += a_per_q * x[i]
+        for r in range(m):
+            lam[r] += x[n + r] / bh2
+    return OK, False, it + 1, matrices, it
+
+
+@kernel
+def step(sys, work, mem, t: float, h: float, y: np.ndarray, rtol: float, atol: float, rho_inf):
+    """One step from (t, y), ẏ in work.stages[0], a_n and λ_n in work: the new
+    state into work.ynew, its derivative into work.stages[6], the Hermite
+    extension into work.dense. Returns (status, error scaled to the tolerance,
+    force evaluations, iteration matrices); an error of ∞ when Newton fails.
+
+    The iteration matrix is kept from step to step while Newton converges with
+    it (its h-dependent terms are small at the step sizes contact forces), and
+    refreshed when it does not: a stale matrix slows convergence, it never
+    changes the converged solution."""
+    n = sys.n
+    fresh = work.it_fresh[0] > 0.0
+    s, converged, evaluations, jacobians, iterations = _newton(
+        sys, work, mem, t, h, y, rtol, atol, rho_inf, not fresh
+    )
+    if s == OK and not converged and fresh:
+        s, converged, more, jacobians, iterations = _newton(
+            sys, work, mem, t, h, y, rtol, atol, rho_inf, True
+        )
+        evaluations += more
+    if s != OK or not converged:
+        return s, np.inf, evaluations, jacobians
+    if iterations > 3:
+        work.it_fresh[0] = 0.0  # converging slowly: refresh at the next step
+    # Newton left the evaluation at the new state in work (forces, constraint
+    # residual, contact outputs, dissipated power).
+    am, af, beta, _ = coefficients(rho_inf)
+    k0 = work.stages[0]
+    k6 = work.stages[6]
+    yn = work.ynew
+    q = yn[:n]
+    v = yn[n : 2 * n]
+    xdd = work.qdd
+    lam = work.ga_lam_new
+    torque = 0.0
+    drive_power = 0.0
+    if sys.drive_row >= 0:
+        torque = -lam[sys.drive_row]
+        drive_power = torque * v[sys.drive_coord]
+    work.scalars[SC_DRIVE_TORQUE] = torque
+    for i in range(n):
+        work.ga_acc_new[i] = ((1.0 - af) * xdd[i] + af * k0[n + i] - am * work.ga_acc[i]) / (
+            1.0 - am
+        )
+        k6[i] = v[i]
+        k6[n + i] = xdd[i]
+    k6[2 * n] = drive_power
+    k6[2 * n + 1] = work.scalars[SC_DISSIPATED_POWER]
+    for i in range(2 * n, 2 * n + 2):
+        yn[i] = y[i] + 0.5 * h * (k0[i] + k6[i])
+    hermite_coefficients(work, y, h)
+    # Local error of q: (β − 1/6) h² (q̈_{n+1} − q̈_n), in work.scratch.
+    for i in range(n):
+        work.scratch[i] = (beta - 1.0 / 6.0) * h * h * (xdd[i] - k0[n + i])
+    return OK, _scaled_rms(work.scratch, y[:n], q, rtol, atol), evaluations, jacobians
+
+
+@kernel
+def step_factor(err: float) -> float:
+    """Ratio of the next step size to this one for a local error of order h³."""
+    return SAFE * max(err, 1e-10) ** (-1.0 / 3.0)

@@ -1,0 +1,120 @@
+"""The Newton iteration matrix of the implicit integrator.
+
+    [ c_M M + c_C C_t + c_K K_t   Φ_qᵀ ]
+    [ Φ_q                         0    ]
+
+with K_t = −∂Q/∂q and C_t = −∂Q/∂q̇ the tangent stiffness and damping of the
+generalized forces Q (gravity is constant and adds nothing):
+- beams: the analytic Jacobians of the elastic and damping forces
+  (`sim.model.ancf`), block by block;
+- clearance contacts: forward differences over the few coordinates the contact
+  forces depend on (work.contact_coords), which is as cheap as it is simple
+  here: a contact evaluation costs a fraction of a microsecond;
+- the geometric stiffness of the constraint forces, ∂(Φ_qᵀλ)/∂q, is left out:
+  for pins on rigid bodies it is λ times a lever (kN · 0.2 m), which c_K = β h²
+  (≤ 3e-9 s² at h = 1e-4 s) makes a 1e-4 share of the inertia term. It slows
+  the Newton contraction marginally and does not change the solution.
+The constraint Jacobian Φ_q is read from work.jac, evaluated at the same state.
+"""
+
+import numpy as np
+
+from sim.jit import kernel
+from sim.model import ancf
+from sim.model.clearance import revolute_clearance_forces, translational_clearance_forces
+from sim.model.system import BM_DAMPING
+
+FD_STEP_Q = 1e-10
+"""Forward-difference step of positions (m) and angles (rad): far below the
+penetrations that matter (> 1e-8 m) so that the δ^1.5 law is resolved."""
+FD_STEP_QD = 1e-8
+"""Forward-difference step of velocities (m/s, rad/s): far below the friction
+tolerance v0 = 1e-4 m/s over which the friction coefficient ramps."""
+
+
+@kernel
+def _contact_forces(sys, work, q: np.ndarray, qd: np.ndarray, mem: np.ndarray, out) -> None:
+    """The generalized clearance contact forces alone into `out`."""
+    out[:] = 0.0
+    revolute_clearance_forces(sys, q, qd, mem, out, work.fd_jout)
+    translational_clearance_forces(sys, q, qd, mem, out, work.fd_jout)
+
+
+@kernel
+def _add_contact_tangent(sys, work, mem, q, qd, x: np.ndarray, step: float, coef: float) -> None:
+    """mat[i, c] −= coef ∂Q_i/∂x_c for the contact coordinates, x being q or q̇."""
+    mat = work.it_mat
+    coords = work.contact_coords
+    _contact_forces(sys, work, q, qd, mem, work.fd_base)
+    for a in range(coords.shape[0]):
+        c = coords[a]
+        saved = x[c]
+        x[c] = saved + step
+        _contact_forces(sys, work, q, qd, mem, work.fd_gen)
+        x[c] = saved
+        for b in range(coords.shape[0]):
+            i = coords[b]
+            mat[i, c] -= coef * (work.fd_gen[i] - work.fd_base[i]) / step
+
+
+@kernel
+def _add_beam_tangent(sys, work, q, qd, c_c: float, c_k: float) -> None:
+    """mat += c_K ∂F/∂q + c_C ∂F_d/∂q̇ (+ c_K ∂F_d/∂q) of every beam's elastic
+    (and damping) forces F = −Q_beam."""
+    mat = work.it_mat
+    for b in range(sys.beam_off.shape[0]):
+        o = sys.beam_off[b]
+        size = 4 * (sys.beam_nel[b] + 1)
+        qb = q[o : o + size]
+        kq = work.beam_kq[:size, :size]
+        ancf.beam_elastic_jacobian(
+            qb,
+            sys.beam_dshape[b],
+            sys.beam_axial_w[b],
+            sys.beam_d2shape[b],
+            sys.beam_bending_w[b],
+            kq,
+        )
+        for i in range(size):
+            for k in range(size):
+                mat[o + i, o + k] += c_k * kq[i, k]
+        beta = sys.beam_f[b, BM_DAMPING]
+        if beta > 0.0:
+            kv = work.beam_kv[:size, :size]
+            ancf.beam_damping_jacobians(
+                qb,
+                qd[o : o + size],
+                sys.beam_dshape[b],
+                sys.beam_axial_w[b],
+                sys.beam_d2shape[b],
+                sys.beam_bending_w[b],
+                beta,
+                kq,
+                kv,
+            )
+            for i in range(size):
+                for k in range(size):
+                    mat[o + i, o + k] += c_k * kq[i, k] + c_c * kv[i, k]
+
+
+@kernel
+def iteration_matrix(
+    sys, work, mem, t: float, q: np.ndarray, qd: np.ndarray, c_m: float, c_c: float, c_k: float
+) -> None:
+    """Assemble the (n + m)² iteration matrix into work.it_mat."""
+    n = sys.n
+    m = sys.m
+    mat = work.it_mat
+    mat[:, :] = 0.0
+    for blk in range(sys.blk_start.shape[0]):
+        for i in range(sys.blk_start[blk], sys.blk_end[blk]):
+            for k in range(sys.blk_start[blk], sys.blk_end[blk]):
+                mat[i, k] = c_m * sys.mass[i, k]
+    _add_beam_tangent(sys, work, q, qd, c_c, c_k)
+    if work.contact_coords.shape[0] > 0:
+        _add_contact_tangent(sys, work, mem, q, qd, q, FD_STEP_Q, c_k)
+        _add_contact_tangent(sys, work, mem, q, qd, qd, FD_STEP_QD, c_c)
+    for r in range(m):
+        for i in range(n):
+            mat[i, n + r] = work.jac[r, i]
+            mat[n + r, i] = work.jac[r, i]
