@@ -94,8 +94,16 @@ def beam_midspan_deflection(q: np.ndarray, sys, b: int) -> float:
 def record_row(sys, work, mem: np.ndarray, t: float, y: np.ndarray, row: np.ndarray) -> int:
     """Evaluate the model at (t, y) and write one sample row; returns the
     right-hand side status."""
-    n = sys.n
     status = rhs(sys, work, mem, t, y, work.ytmp)
+    write_row(sys, work, y, row)
+    return status
+
+
+@kernel
+def write_row(sys, work, y: np.ndarray, row: np.ndarray) -> None:
+    """Write one sample row of the state y from the evaluation at y that work
+    holds (accelerations work.qdd, forces, contact outputs, constraint residual)."""
+    n = sys.n
     q = y[:n]
     qd = y[n : 2 * n]
     nb = sys.ref_idx.shape[0]
@@ -159,4 +167,3 @@ def record_row(sys, work, mem: np.ndarray, t: float, y: np.ndarray, row: np.ndar
     row[c + 4] = work.scalars[SC_CONTACT_ENERGY]
     row[c + 5] = y[2 * n]
     row[c + 6] = y[2 * n + 1]
-    return status

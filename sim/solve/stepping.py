@@ -29,7 +29,7 @@ from sim.model.system import OUT_NORMAL_FORCE, OUT_PENETRATION
 from sim.solve import dopri, galpha
 from sim.solve.dae import NONFINITE, OK, SC_DRIVE_TORQUE, rhs
 from sim.solve.dense import interpolate
-from sim.solve.record import record_row, reference_point
+from sim.solve.record import record_row, reference_point, write_row
 
 # Integration methods (solver.method).
 METHOD_DOPRI5, METHOD_GENERALIZED_ALPHA = 0, 1
@@ -212,20 +212,38 @@ def _check_state(sys, work, opts, pen_bound, stats) -> int:
 
 
 @kernel
-def _sample(sys, work, mem, t0, h, times, rows, stats, slot, scratch) -> int:
-    """Record every requested time in (t0, t0 + h] from the continuous extension."""
+def _sample(sys, work, mem, method, t0, h, times, rows, stats, slot, scratch) -> int:
+    """Record every requested time in (t0, t0 + h]. DOPRI5: from its continuous
+    extension, evaluated afresh. Generalized-α ends a step at every requested
+    time (`_next_sample`) and records the step's own state, accelerations and
+    multipliers: accelerations evaluated afresh at an interpolated state would
+    carry its interpolation error times the beams' axial stiffness."""
     ny = 2 * sys.n + 2
     # Round-off in t0 + h must not drop a sample that falls on the step's end.
     t1 = t0 + h + 1e-12 * max(1.0, abs(t0))
     while stats[slot] < times.shape[0] and times[stats[slot]] <= t1:
         i = stats[slot]
-        theta = min((times[i] - t0) / h, 1.0)
-        interpolate(work, theta, ny, scratch)
-        s = record_row(sys, work, mem, times[i], scratch, rows[i])
-        if s != OK:
-            return s
+        if method == METHOD_GENERALIZED_ALPHA:
+            write_row(sys, work, work.ynew, rows[i])
+        else:
+            theta = min((times[i] - t0) / h, 1.0)
+            interpolate(work, theta, ny, scratch)
+            s = record_row(sys, work, mem, times[i], scratch, rows[i])
+            if s != OK:
+                return s
         stats[slot] += 1
     return OK
+
+
+@kernel
+def _next_sample(t: float, out_t, sec_t, stats) -> float:
+    """The earliest output or section time after t (∞ when none is left)."""
+    nxt = np.inf
+    if stats[S_OUT] < out_t.shape[0]:
+        nxt = out_t[stats[S_OUT]]
+    if stats[S_SEC] < sec_t.shape[0]:
+        nxt = min(nxt, sec_t[stats[S_SEC]])
+    return nxt if nxt > t else np.inf
 
 
 @kernel
@@ -306,6 +324,7 @@ def integrate(
         if method == METHOD_GENERALIZED_ALPHA:
             galpha.start(sys, work)
         st[ST_FSAL] = 1.0
+    wanted = h
     forced = 0.0  # > 0: the next step must end exactly at a located event
     pending = -1  # the gap to flip at the end of the forced step
     flips_at_t = 0
@@ -317,7 +336,12 @@ def integrate(
             hs = forced
         else:
             hs = min(h, hmax)
-            if t + 1.01 * hs >= t_end:
+            wanted = hs
+            if method == METHOD_GENERALIZED_ALPHA:
+                # Equal steps to the next sample or t_end, none longer than h.
+                left = min(t_end, _next_sample(t, out_t, sec_t, stats)) - t
+                hs = left / np.ceil(left / hs * (1.0 - 1e-9))
+            elif t + 1.01 * hs >= t_end:
                 hs = t_end - t
         mem[:, 2] = 0.0
         s, err = _step(sys, work, mem, method, t, hs, y, opts, stats)
@@ -357,10 +381,10 @@ def integrate(
             diag[D_TIME] = t + hs
             return s
         if method == METHOD_GENERALIZED_ALPHA:
-            galpha.accept(work)
-        s = _sample(sys, work, mem, t, hs, out_t, out_rows, stats, S_OUT, work.yint)
+            galpha.accept(work, hs)
+        s = _sample(sys, work, mem, method, t, hs, out_t, out_rows, stats, S_OUT, work.yint)
         if s == OK:
-            s = _sample(sys, work, mem, t, hs, sec_t, sec_rows, stats, S_SEC, work.yint)
+            s = _sample(sys, work, mem, method, t, hs, sec_t, sec_rows, stats, S_SEC, work.yint)
         if s != OK:
             diag[D_TIME] = t
             return s
@@ -385,7 +409,10 @@ def integrate(
             flips_at_t = 0
             continue
         flips_at_t = 0
-        h = _grown_step(method, hs, err, facold)
+        grown = _grown_step(method, hs, err, facold)
+        # A step cut short to land on t_end or a sample says nothing against
+        # the step size that was wanted.
+        h = max(grown, h) if hs < wanted else grown
         facold = max(err, 1e-4)
     st[ST_T] = t
     st[ST_H] = h
