@@ -1,0 +1,128 @@
+"""Benchmark of the flexible six-bar (issue 7): real-time factor per integrator.
+
+The flagship case: A and B clearances of 0.5 mm, 150 rpm, rod2–rod4 as ANCF beams of
+2 elements each, rtol 1e-6, on one core after compilation. Prints for each integrator
+the real-time factor, steps, rejected steps, force evaluations, iteration matrices and
+Newton failures, and where one implicit step's time goes (the compiled kernels timed
+one by one, since a Python profiler cannot see inside them).
+
+Usage: python benchmarks/flexible_speed.py [--revolutions N] [--explicit-revolutions M]
+       [--set key=value ...]
+"""
+
+import argparse
+import time
+
+import numba
+
+from sim.model.constraints import constraint_terms
+from sim.run import prepare, simulate
+from sim.scene import load_scene
+from sim.solve import dae, galpha, linalg, tangent
+
+FLAGSHIP = [
+    "joints.A.clearance=0.5e-3",
+    "joints.B.clearance=0.5e-3",
+    "solver.rtol=1e-6",
+    *(f"bodies.{b}.kind=beam" for b in ("rod2", "rod3", "rod4")),
+    *(f"bodies.{b}.elements=2" for b in ("rod2", "rod3", "rod4")),
+]
+
+
+def run(method: str, revolutions: float, extra: list[str]) -> dict:
+    """One simulation after a short warm-up run (compilation); its statistics."""
+    sets = [*FLAGSHIP, f"solver.method={method}", *extra]
+    simulate(load_scene("sixbar", [*sets, "simulation.revolutions=0.005"]))
+    ds = simulate(load_scene("sixbar", [*sets, f"simulation.revolutions={revolutions}"]))
+    return ds.attrs
+
+
+@numba.njit
+def _time_residual(system, work, mem, q, v, count):
+    for _ in range(count):
+        galpha._residual(system, work, mem, 0.0, q, v, work.ga_xdd, work.ga_lam, 1e-9, 1e-6, 1e-8)
+
+
+@numba.njit
+def _time_rhs(system, work, mem, y, count):
+    for _ in range(count):
+        dae.rhs(system, work, mem, 0.0, y, work.stages[6])
+
+
+@numba.njit
+def _time_forces(system, work, mem, q, v, count):
+    for _ in range(count):
+        dae.generalized_forces(system, work, 0.0, q, v, mem)
+        constraint_terms(system, 0.0, q, v, work.phi, work.jac, work.gamma, work.nu)
+
+
+@numba.njit
+def _time_matrix(system, work, mem, q, v, count):
+    for _ in range(count):
+        tangent.iteration_matrix(system, work, mem, 0.0, q, v, 1.0, 1e-5, 1e-9)
+        linalg.lu_in_place(work.it_mat, work.it_piv)
+
+
+@numba.njit
+def _time_solve(work, count):
+    for _ in range(count):
+        linalg.lu_solve_in_place(work.it_mat, work.it_piv, work.it_rhs)
+
+
+def kernel_costs() -> dict[str, float]:
+    """Microseconds per call of the kernels one implicit step is made of."""
+    integ = prepare(load_scene("sixbar", FLAGSHIP))
+    system, work, mem, y = integ.system, integ.work, integ.mem, integ.y
+    n = system.n
+    q, v = y[:n].copy(), y[n : 2 * n].copy()
+    cases = {
+        "forces + constraints (one evaluation)": (_time_forces, (system, work, mem, q, v)),
+        "Newton residual (evaluation + M q̈ + Φ_qᵀλ)": (_time_residual, (system, work, mem, q, v)),
+        "equations of motion at the step's end (rhs)": (_time_rhs, (system, work, mem, y)),
+        "iteration matrix + LU factorisation": (_time_matrix, (system, work, mem, q, v)),
+        "LU solve": (_time_solve, (work,)),
+    }
+    out = {}
+    for name, (kernel, args) in cases.items():
+        kernel(*args, 2)
+        count = 2000
+        start = time.perf_counter()
+        kernel(*args, count)
+        out[name] = 1e6 * (time.perf_counter() - start) / count
+    return out
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--revolutions", type=float, default=2.0)
+    parser.add_argument(
+        "--explicit-revolutions",
+        type=float,
+        default=0.1,
+        help="DOPRI5 resolves the beams' axial modes and is slow: a shorter run",
+    )
+    parser.add_argument("--set", dest="extra", action="append", default=[])
+    args = parser.parse_args()
+    print("flagship: A + B 0.5 mm, 150 rpm, rod2-rod4 beams x 2 elements, rtol 1e-6")
+    for method, revs in (
+        ("generalized_alpha", args.revolutions),
+        ("dopri5", args.explicit_revolutions),
+    ):
+        st = run(method, revs, args.extra)
+        steps = st["solver_accepted_steps"] + st["solver_rejected_steps"]
+        print(
+            f"  {method:18s} {revs:g} rev: real-time factor {st['real_time_factor']:.3f}, "
+            f"wall {st['solver_wall_time_s']:.2f} s, steps {st['solver_accepted_steps']} "
+            f"(+{st['solver_rejected_steps']} rejected), evaluations "
+            f"{st['solver_function_evaluations']}, iteration matrices "
+            f"{st['solver_iteration_matrices']}, Newton failures {st['solver_newton_failures']}, "
+            f"contact events {st['solver_contact_events']}, "
+            f"{1e6 * st['solver_wall_time_s'] / steps:.1f} us per step"
+        )
+    print("where one implicit step's time goes (us per call):")
+    for name, cost in kernel_costs().items():
+        print(f"  {name:48s} {cost:8.2f}")
+
+
+if __name__ == "__main__":
+    main()
