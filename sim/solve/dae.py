@@ -63,6 +63,9 @@ class Work(NamedTuple):
     yint: np.ndarray  # (ny,) interpolated state of an output sample
     dense: np.ndarray  # (5, ny) dense-output coefficients of the last step
     gaps: np.ndarray  # (ngaps,)
+    jac_cols: np.ndarray  # (m, k) the columns where each row of Φ_q can be nonzero
+    jac_ncols: np.ndarray  # (m,) how many
+    col_block: np.ndarray  # (n,) the mass block of each coordinate
     # The implicit method (sim.solve.galpha, sim.solve.tangent):
     it_mat: np.ndarray  # (n + m, n + m) Newton iteration matrix, then its LU factors
     it_piv: np.ndarray  # (n + m,) pivots
@@ -104,9 +107,29 @@ def contact_coordinates(system: System) -> np.ndarray:
     return np.array(sorted(coords), dtype=np.int64)
 
 
+def jacobian_pattern(system: System) -> tuple[np.ndarray, np.ndarray]:
+    """The columns where each row of Φ_q can be nonzero, from Φ_q at a generic
+    state (angles and slopes away from the values where an entry vanishes)."""
+    rng = np.random.default_rng(0)
+    q = rng.uniform(0.1, 1.0, system.n)
+    jac = np.zeros((system.m, system.n))
+    scratch = np.zeros(system.m)
+    constraint_terms(system, 0.0, q, q, scratch, jac, scratch.copy(), scratch.copy())
+    rows = [np.flatnonzero(row) for row in jac]
+    width = max((r.size for r in rows), default=0)
+    cols = np.zeros((system.m, width), dtype=np.int64)
+    for i, r in enumerate(rows):
+        cols[i, : r.size] = r
+    return cols, np.array([r.size for r in rows], dtype=np.int64)
+
+
 def make_work(system: System) -> Work:
     """Allocate the scratch arrays for `system`."""
     n, m, ny = system.n, system.m, state_size(system)
+    jac_cols, jac_ncols = jacobian_pattern(system)
+    col_block = np.zeros(n, dtype=np.int64)
+    for b, (start, end) in enumerate(zip(system.blk_start, system.blk_end, strict=True)):
+        col_block[start:end] = b
     beam_size = 4 * (int(system.beam_nel.max()) + 1) if system.beam_nel.size else 0
     return Work(
         phi=np.zeros(m),
@@ -128,6 +151,9 @@ def make_work(system: System) -> Work:
         yint=np.zeros(ny),
         dense=np.zeros((5, ny)),
         gaps=np.zeros(n_gaps(system)),
+        jac_cols=jac_cols,
+        jac_ncols=jac_ncols,
+        col_block=col_block,
         it_mat=np.zeros((n + m, n + m)),
         it_piv=np.zeros(n + m, dtype=np.int64),
         it_rhs=np.zeros(n + m),
@@ -181,40 +207,49 @@ def generalized_forces(sys, work, t: float, q: np.ndarray, qd: np.ndarray, mem: 
 def rhs(sys, work, mem: np.ndarray, t: float, y: np.ndarray, ydot: np.ndarray) -> int:
     """ẏ = f(t, y); returns OK, SINGULAR (constraint Jacobian lost rank) or NONFINITE."""
     n = sys.n
-    m = sys.m
     q = y[:n]
     qd = y[n : 2 * n]
     generalized_forces(sys, work, t, q, qd, mem)
+    if sys.m > 0:
+        constraint_terms(sys, t, q, qd, work.phi, work.jac, work.gamma, work.nu)
+    return accelerations(sys, work, qd, ydot)
+
+
+@kernel
+def accelerations(sys, work, qd: np.ndarray, ydot: np.ndarray) -> int:
+    """ẏ from the forces and constraint terms that work holds for a state with
+    velocities q̇: the Schur-complement solve of the module docstring. Φ_q is
+    sparse (a row touches at most two bodies), so its products run over the
+    nonzero columns of each row (work.jac_cols) only."""
+    n = sys.n
+    m = sys.m
     block_times(sys, sys.mass_inv, work.gen, work.minv_gen)
     qdd = work.qdd
     if m > 0:
         jac = work.jac
-        constraint_terms(sys, t, q, qd, work.phi, jac, work.gamma, work.nu)
+        cols = work.jac_cols
         alpha = sys.baumgarte[0]
         beta = sys.baumgarte[1]
         b = work.rhs
-        for i in range(m):
-            vel = -work.nu[i]
-            acc = 0.0
-            for k in range(n):
-                vel += jac[i, k] * qd[k]
-                acc += jac[i, k] * work.minv_gen[k]
-            b[i] = acc - (work.gamma[i] - 2.0 * alpha * vel - beta * beta * work.phi[i])
         y_mt = work.minv_jt
-        for blk in range(sys.blk_start.shape[0]):
-            s = sys.blk_start[blk]
-            e = sys.blk_end[blk]
-            for i in range(s, e):
-                for r in range(m):
-                    acc = 0.0
-                    for k in range(s, e):
-                        acc += sys.mass_inv[i, k] * jac[r, k]
-                    y_mt[i, r] = acc
+        y_mt[:, :] = 0.0
+        for r in range(m):
+            vel = -work.nu[r]
+            acc = 0.0
+            for c in range(work.jac_ncols[r]):
+                k = cols[r, c]
+                vel += jac[r, k] * qd[k]
+                acc += jac[r, k] * work.minv_gen[k]
+                blk = work.col_block[k]
+                for i in range(sys.blk_start[blk], sys.blk_end[blk]):
+                    y_mt[i, r] += sys.mass_inv[i, k] * jac[r, k]
+            b[r] = acc - (work.gamma[r] - 2.0 * alpha * vel - beta * beta * work.phi[r])
         schur = work.schur
         for i in range(m):
             for j in range(i + 1):
                 acc = 0.0
-                for k in range(n):
+                for c in range(work.jac_ncols[i]):
+                    k = cols[i, c]
                     acc += jac[i, k] * y_mt[k, j]
                 schur[i, j] = acc
                 schur[j, i] = acc
