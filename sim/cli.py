@@ -1,8 +1,9 @@
-"""The `sim` command line: run | scene | analyze | experiment.
+"""The `sim` command line: run | scene | analyze | sweep | experiment.
 
     sim run sixbar -o flagship.nc --set joints.A.clearance=0.5e-3
     sim scene sixbar --set drive.speed_rpm=60
     sim analyze flagship.nc -o flagship-analysis.nc
+    sim sweep sixbar --key joints.A.clearance --range 0 1e-3 11 --out-dir runs -o bifurcation.nc
     sim experiment synthesize | compare ...
 
 Errors in the input (scene, overrides, files) are reported in one line with
@@ -77,9 +78,11 @@ def build_parser() -> argparse.ArgumentParser:
     scene.set_defaults(func=_cmd_scene)
 
     from sim.analysis.cli import register as register_analyze
+    from sim.analysis.cli import register_sweep
     from sim.experiment.cli import register as register_experiment
 
     register_analyze(sub)
+    register_sweep(sub)
     register_experiment(sub)
     return parser
 

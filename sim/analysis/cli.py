@@ -1,10 +1,10 @@
-"""The ``sim analyze`` subcommand: chaos analysis of one run file."""
+"""The ``sim analyze`` and ``sim sweep`` subcommands."""
 
 import argparse
-import os
 import sys
 from pathlib import Path
 
+import numpy as np
 import xarray as xr
 
 from sim.analysis.run import analyze_run
@@ -40,25 +40,144 @@ def register(subparsers: argparse._SubParsersAction) -> argparse.ArgumentParser:
             "or a quarter of the run, whichever is smaller)"
         ),
     )
+    parser.add_argument(
+        "--model-lyapunov",
+        action="store_true",
+        help=(
+            "also compute the largest Lyapunov exponent of the model (Benettin: the run's scene "
+            "integrated again beside a perturbed copy; costs about two runs)"
+        ),
+    )
     parser.set_defaults(func=analyze_command)
     return parser
 
 
+def _model_lyapunov(run: xr.Dataset, transient: int) -> xr.Dataset:
+    from sim.analysis.model_lyapunov import (
+        DEFAULT_TOLERANCES,
+        linkage_lyapunov,
+        model_lyapunov_dataset,
+        with_tolerances,
+    )
+    from sim.results import scene_of
+
+    if "scene" not in run.attrs:
+        raise ValueError("missing global attribute 'scene' (the run's resolved scene as JSON)")
+    scene = with_tolerances(scene_of(run), DEFAULT_TOLERANCES)
+    result = linkage_lyapunov(
+        scene,
+        revolutions=scene["simulation"]["revolutions"],
+        transient_revolutions=transient,
+        ideal=bool(run.attrs.get("model_ideal", 0)),
+        rigid=bool(run.attrs.get("model_rigid", 0)),
+    )
+    return model_lyapunov_dataset(result, (scene["solver"]["rtol"], scene["solver"]["atol"]))
+
+
 def analyze_command(args: argparse.Namespace) -> int:
     """Handler of ``sim analyze``; returns the exit code."""
+    from sim.results import write_netcdf
+    from sim.run import SimulationError
+
     try:
         with xr.open_dataset(args.run) as run:
-            transient = (
-                default_transient(run.sizes.get("revolution", 0))
-                if args.transient is None
-                else args.transient
-            )
-            analysis = analyze_run(run.load(), transient_revolutions=transient)
-    except (OSError, ValueError) as error:
+            run = run.load()
+        transient = (
+            default_transient(run.sizes.get("revolution", 0))
+            if args.transient is None
+            else args.transient
+        )
+        analysis = analyze_run(run, transient_revolutions=transient)
+        if args.model_lyapunov:
+            model = _model_lyapunov(run, transient)
+            analysis = analysis.merge(model, combine_attrs="no_conflicts")
+    except (OSError, ValueError, SimulationError) as error:
         print(f"sim analyze: {args.run}: {error}", file=sys.stderr)
         return 1
-    # written under a temporary name and renamed, so a crash never leaves a partial file
-    partial = args.output.with_name(args.output.name + ".partial")
-    analysis.to_netcdf(partial)
-    os.replace(partial, args.output)
+    write_netcdf(analysis, args.output)  # atomic: a crash leaves no partial file
+    return 0
+
+
+def register_sweep(subparsers: argparse._SubParsersAction) -> argparse.ArgumentParser:
+    """Add the ``sweep`` subcommand to the ``sim`` command's subparsers."""
+    from sim.cli import add_scene_arguments
+
+    parser = subparsers.add_parser(
+        "sweep",
+        help="simulate a scene over the values of a parameter: one bifurcation dataset",
+        description=(
+            "Run the scene once per value of the swept key(s), write every run to --out-dir "
+            "and their Poincaré samples, stacked along the dimension 'parameter', to -o."
+        ),
+    )
+    add_scene_arguments(parser)
+    parser.add_argument(
+        "--key",
+        dest="keys",
+        action="append",
+        required=True,
+        metavar="DOTTED.KEY",
+        help="scene key to sweep, e.g. joints.A.clearance (repeatable: all take the value)",
+    )
+    values = parser.add_mutually_exclusive_group(required=True)
+    values.add_argument("--values", type=float, nargs="+", metavar="V", help="the values")
+    values.add_argument(
+        "--range",
+        type=float,
+        nargs=3,
+        metavar=("START", "STOP", "COUNT"),
+        help="COUNT evenly spaced values from START to STOP inclusive",
+    )
+    parser.add_argument(
+        "--transient",
+        type=int,
+        default=DEFAULT_TRANSIENT_REVOLUTIONS,
+        metavar="N",
+        help=(
+            "revolutions to drop before plotting, recorded in the dataset; the run length is "
+            f"simulation.revolutions (default {DEFAULT_TRANSIENT_REVOLUTIONS})"
+        ),
+    )
+    parser.add_argument(
+        "--label", help="short parameter name for file names (default: the key's last part)"
+    )
+    parser.add_argument(
+        "--out-dir", type=Path, required=True, help="folder of the per-value run files"
+    )
+    parser.add_argument(
+        "-o", "--output", type=Path, required=True, help="bifurcation dataset to write"
+    )
+    parser.add_argument("-q", "--quiet", action="store_true", help="no progress line")
+    parser.set_defaults(func=sweep_command)
+    return parser
+
+
+def sweep_values(args: argparse.Namespace) -> list[float]:
+    """The values of ``--values`` or ``--range`` (COUNT a positive whole number)."""
+    if args.values is not None:
+        return list(args.values)
+    start, stop, count = args.range
+    if count < 1 or not float(count).is_integer():
+        raise ValueError(f"--range COUNT = {count:g} is not accepted; expected a whole number ≥ 1")
+    return [float(v) for v in np.linspace(start, stop, int(count))]
+
+
+def sweep_command(args: argparse.Namespace) -> int:
+    """Handler of ``sim sweep``; returns the exit code (errors are reported by ``sim.cli``)."""
+    from sim.analysis.sweep import run_sweep
+    from sim.results import write_netcdf
+
+    values = sweep_values(args)
+    combined = run_sweep(
+        args.scene,
+        args.overrides,
+        args.keys,
+        values,
+        out_dir=args.out_dir,
+        label=args.label or args.keys[0].rsplit(".", 1)[-1],
+        transient_revolutions=args.transient,
+        progress=not args.quiet,
+    )
+    write_netcdf(combined, args.output)
+    print(f"{args.output}: {len(values)} values of {','.join(args.keys)}; runs in {args.out_dir}")
     return 0

@@ -17,7 +17,7 @@ from sim.cli import add_scene_arguments
 from sim.experiment.alignment import align_simulation
 from sim.experiment.errors import RecordingError
 from sim.experiment.metrics import compare
-from sim.experiment.recording import load_recording, write_recording
+from sim.experiment.recording import load_recording, write_atomically, write_recording
 from sim.experiment.sensor import SensorSettings, load_sensor_settings
 from sim.experiment.synthesize import synthesize_recording
 
@@ -132,14 +132,46 @@ def run_compare(args: argparse.Namespace) -> int:
     dataset = comparison.to_dataset()
     dataset.attrs["recording"] = str(args.recording)
     dataset.attrs["simulation"] = str(args.simulation)
-    args.out_dir.mkdir(parents=True, exist_ok=True)
-    dataset.to_netcdf(args.out_dir / COMPARISON_NETCDF)
     summary = comparison.summary() | {
         "recording": str(args.recording),
         "simulation": str(args.simulation),
     }
-    (args.out_dir / COMPARISON_JSON).write_text(json.dumps(summary, indent=2) + "\n")
-    plot_overlay(dataset).savefig(args.out_dir / OVERLAY_FIGURE, dpi=150)
-    plot_spectra(dataset).savefig(args.out_dir / SPECTRA_FIGURE, dpi=150)
-    print(f"{comparison.data_kind}: metrics and figures in {args.out_dir}")
+    if recording.synthetic:
+        # the truth the alignment should recover, drawn by the sensor model
+        injected = float(recording.metadata["synthesis"]["sensor_draws"]["time_shift_s"])
+        summary["alignment"]["injected_shift_s"] = injected
+    args.out_dir.mkdir(parents=True, exist_ok=True)
+    outputs = {
+        COMPARISON_NETCDF: dataset.to_netcdf,
+        COMPARISON_JSON: lambda path: path.write_text(json.dumps(summary, indent=2) + "\n"),
+        OVERLAY_FIGURE: lambda path: plot_overlay(dataset).savefig(path, dpi=150, format="png"),
+        SPECTRA_FIGURE: lambda path: plot_spectra(dataset).savefig(path, dpi=150, format="png"),
+    }
+    for name, write in outputs.items():
+        write_atomically(args.out_dir / name, write)
+    print(format_summary(summary))
+    print(f"metrics and figures in {args.out_dir}")
     return 0
+
+
+def format_summary(summary: dict) -> str:
+    """The comparison summary (of ``Comparison.summary``) as a few lines of text."""
+    alignment = summary["alignment"]
+    rate = alignment["sampling_rate_hz"]
+    shift = f"shift {alignment['shift_s'] * 1e3:.4g} ms by {alignment['method']}"
+    if "injected_shift_s" in alignment:
+        error = (alignment["shift_s"] - alignment["injected_shift_s"]) * rate
+        shift += f" (injected {alignment['injected_shift_s'] * 1e3:.4g} ms: {error:+.2f} samples)"
+    lines = [
+        f"{summary['data_kind']} ({summary['note']})",
+        f"  {shift}; {summary['revolutions']} revolutions at {rate:g} Hz, "
+        f"band {alignment['bandwidth_hz']:g} Hz",
+    ]
+    for name, metric in summary["metrics"].items():
+        lines.append(f"  {name:30s} {metric['mean']:10.4g} ± {metric['std']:.2g} {metric['unit']}")
+    peaks = summary["spectral_peaks_hz"]
+    lines.append(f"  spectral distance {summary['spectral_distance_db']:.3g} dB")
+    for kind in ("measured", "simulated"):
+        shown = ", ".join(f"{f:.4g}" for f in peaks[kind][:5])
+        lines.append(f"  spectral peaks, {kind:9s} [Hz]: {shown}")
+    return "\n".join(lines)

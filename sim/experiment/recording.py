@@ -12,7 +12,7 @@ import io
 import math
 import os
 import tempfile
-from collections.abc import Mapping
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -138,15 +138,18 @@ def write_recording(
     meta_text = yaml.safe_dump(dict(metadata), sort_keys=False)
     csv_path.parent.mkdir(parents=True, exist_ok=True)
     for target, text in ((csv_path, csv_text), (meta_path, meta_text)):
-        _atomic_write(target, text)
+        write_atomically(target, lambda temporary, text=text: temporary.write_text(text, "utf-8"))
     return csv_path
 
 
-def _atomic_write(target: Path, text: str) -> None:
+def write_atomically(target: Path, write: Callable[[Path], object]) -> None:
+    """Call ``write(temporary)`` for a temporary file beside ``target``, then move it into
+    place with ``os.replace``: a reader never sees a half-written ``target``, and a failed
+    write leaves nothing behind. ``write`` must not rely on the file name's extension."""
     handle, temporary = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.")
+    os.close(handle)
     try:
-        with os.fdopen(handle, "w", encoding="utf-8") as stream:
-            stream.write(text)
+        write(Path(temporary))
         os.replace(temporary, target)
     except BaseException:
         os.unlink(temporary)

@@ -47,7 +47,7 @@ def _parse(*argv: str) -> argparse.Namespace:
     return parser.parse_args(list(argv))
 
 
-def test_synthesize_then_compare(tmp_path: Path, fake_simulator: list) -> None:
+def test_synthesize_then_compare(tmp_path: Path, fake_simulator: list, capsys) -> None:
     recording = tmp_path / "data" / "synthetic.csv"
     sensor = tmp_path / "sensor.yaml"
     sensor.write_text("sampling_rate_hz: 1000.0\nbandwidth_hz: 250.0\n")
@@ -72,6 +72,16 @@ def test_synthesize_then_compare(tmp_path: Path, fake_simulator: list) -> None:
     assert args.func(args) == 0
     summary = json.loads((out / cli.COMPARISON_JSON).read_text())
     assert summary["data_kind"] == "synthetic recording"
+    # the truth drawn by the sensor model is reported beside the recovered shift
+    injected = loaded.metadata["synthesis"]["sensor_draws"]["time_shift_s"]
+    assert summary["alignment"]["injected_shift_s"] == injected
+    assert abs(summary["alignment"]["shift_s"] - injected) * 1000.0 < 1.0
+    printed = capsys.readouterr().out
+    assert "synthetic recording" in printed and "correlation" in printed
+    assert f"injected {injected * 1e3:.4g} ms" in printed
+    assert sorted(path.name for path in out.iterdir()) == sorted(
+        [cli.COMPARISON_NETCDF, cli.COMPARISON_JSON, cli.OVERLAY_FIGURE, cli.SPECTRA_FIGURE]
+    )
     assert summary["metrics"]["correlation"]["mean"] > 0.99
     with xr.open_dataset(out / cli.COMPARISON_NETCDF) as dataset:
         assert dataset.attrs["synthetic"] == 1

@@ -1,0 +1,144 @@
+"""Where one right-hand side evaluation spends its time (issue 2's profile, inside numba).
+
+pyinstrument sees the compiled integrator as one opaque call, so this script times its
+kernels one by one, each called in a compiled loop (no Python dispatch in the figure), on
+the rigid six-bar with A and B clearances of 0.5 mm at 150 rpm, in a state with contact:
+
+  - rhs: one full evaluation ẏ = f(t, y);
+  - generalized forces: gravity, both clearance joints' contact forces (and beams, none here);
+  - revolute / translational clearance forces alone;
+  - constraint terms: Φ, Φ_q, γ, ν;
+  - Cholesky factorisation and solve of the Schur complement Φ_q M⁻¹ Φ_qᵀ;
+  - the rest of rhs (the products M⁻¹ Q, M⁻¹ Φ_qᵀ, Φ_q M⁻¹ Φ_qᵀ, q̈): the difference.
+
+Usage: python benchmarks/kernel_timing.py [--calls N]
+"""
+
+import argparse
+import time
+
+import numpy as np
+
+from sim.jit import kernel
+from sim.model.clearance import revolute_clearance_forces, translational_clearance_forces
+from sim.model.constraints import constraint_terms
+from sim.run import prepare
+from sim.scene import load_scene
+from sim.solve.dae import OK, generalized_forces, rhs
+from sim.solve.linalg import cholesky_in_place, cholesky_solve_in_place
+
+CASE = ["joints.A.clearance=0.5e-3", "joints.B.clearance=0.5e-3", "solver.rtol=1e-6"]
+
+
+@kernel
+def _rhs_loop(sys, work, mem, t, y, ydot, calls):
+    for _ in range(calls):
+        rhs(sys, work, mem, t, y, ydot)
+
+
+@kernel
+def _forces_loop(sys, work, mem, t, y, calls):
+    n = sys.n
+    for _ in range(calls):
+        generalized_forces(sys, work, t, y[:n], y[n : 2 * n], mem)
+
+
+@kernel
+def _revolute_loop(sys, work, mem, y, calls):
+    n = sys.n
+    for _ in range(calls):
+        revolute_clearance_forces(sys, y[:n], y[n : 2 * n], mem, work.gen, work.jout)
+
+
+@kernel
+def _translational_loop(sys, work, mem, y, calls):
+    n = sys.n
+    for _ in range(calls):
+        translational_clearance_forces(sys, y[:n], y[n : 2 * n], mem, work.gen, work.jout)
+
+
+@kernel
+def _constraints_loop(sys, work, t, y, calls):
+    n = sys.n
+    for _ in range(calls):
+        constraint_terms(sys, t, y[:n], y[n : 2 * n], work.phi, work.jac, work.gamma, work.nu)
+
+
+@kernel
+def _cholesky_loop(schur, factor, b, rhs_in, m, calls):
+    # the copies (m² + m numbers) are part of the figure; they are small against the rest
+    for _ in range(calls):
+        for i in range(m):
+            b[i] = rhs_in[i]
+            for j in range(m):
+                factor[i, j] = schur[i, j]
+        cholesky_in_place(factor, m)
+        cholesky_solve_in_place(factor, m, b)
+
+
+def per_call_us(loop, *args, calls: int) -> float:
+    """Best of three timings of `calls` calls, in microseconds per call."""
+    loop(*args, 10)  # compile or load from the cache
+    best = np.inf
+    for _ in range(3):
+        t0 = time.perf_counter()
+        loop(*args, calls)
+        best = min(best, time.perf_counter() - t0)
+    return 1e6 * best / calls
+
+
+def contact_state(revolutions: float = 5.0):
+    """The integrator's state at the first chunk end where both joints are in contact
+    (gap 0: the journal of A; gaps 1–8: the slider's corners against the guide walls)."""
+    scene = load_scene("sixbar", CASE)
+    integ = prepare(scene, revolutions=revolutions)
+    period = 60.0 / scene["drive"]["speed_rpm"]
+    t = 0.0
+    while t < revolutions * period:
+        t += period / 200
+        if integ.advance(t) != OK:
+            raise RuntimeError(f"integration failed at t = {t}")
+        if integ.mem[0, 0] > 0 and (integ.mem[1:, 0] > 0).any():
+            return integ, t
+    raise RuntimeError("no contact found")
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--calls", type=int, default=200_000)
+    args = parser.parse_args()
+    integ, t = contact_state()
+    sys, work, mem, y = integ.system, integ.work, integ.mem, integ.y.copy()
+    ydot = np.zeros_like(y)
+    calls = args.calls
+    closed = [int(g) for g in np.nonzero(integ.mem[:, 0] > 0)[0]]
+    print(
+        f"rigid six-bar, A+B 0.5 mm, state at t = {t:.4f} s (closed gaps {closed}), "
+        f"n = {sys.n} coordinates, m = {sys.m} constraints; µs per call, best of 3 × {calls}:"
+    )
+    figures = {
+        "rhs (one evaluation)": per_call_us(_rhs_loop, sys, work, mem, t, y, ydot, calls=calls),
+        "generalized forces": per_call_us(_forces_loop, sys, work, mem, t, y, calls=calls),
+        "  revolute clearance (A)": per_call_us(_revolute_loop, sys, work, mem, y, calls=calls),
+        "  translational clearance (B)": per_call_us(
+            _translational_loop, sys, work, mem, y, calls=calls
+        ),
+        "constraint terms": per_call_us(_constraints_loop, sys, work, t, y, calls=calls),
+    }
+    rhs(sys, work, mem, t, y, ydot)  # leaves the Schur matrix and its right-hand side
+    m = sys.m
+    # rhs factors work.schur in place; rebuild S = Φ_q M⁻¹ Φ_qᵀ from its own products
+    schur = work.jac @ work.minv_jt
+    figures["Schur Cholesky + solve"] = per_call_us(
+        _cholesky_loop, schur, np.zeros((m, m)), np.zeros(m), work.rhs.copy(), m, calls=calls
+    )
+    parts = sum(figures[k] for k in ("generalized forces", "constraint terms"))
+    figures["rest (M⁻¹ products, Schur assembly)"] = (
+        figures["rhs (one evaluation)"] - parts - figures["Schur Cholesky + solve"]
+    )
+    for name, value in figures.items():
+        print(f"  {name:38s} {value:6.3f}")
+
+
+if __name__ == "__main__":
+    main()
