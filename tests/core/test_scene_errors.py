@@ -44,6 +44,13 @@ CASES = [
     ),
     (["--set", "joints.A.clearance"], "expected dotted.key=value"),
     (["--set", "bodies.slider.kind=beam"], "'bodies.slider.kind' = 'beam' needs shape 'bar'"),
+    (
+        ["--set", "bodies.rod2.damping={kind: modal}"],
+        "'bodies.rod2.damping.kind' = 'modal' needs 'bodies.rod2.damping.ratio'",
+    ),
+    (["--set", "simulation.beam_start=bent"], "expected one of 'quasi-static', 'straight'"),
+    # A loop that cannot close: rod3 far too short to reach D from C.
+    (["--set", "bodies.rod3.length=0.05"], "the linkage cannot close: joint 'C' misses by 0.146 m"),
 ]
 
 
