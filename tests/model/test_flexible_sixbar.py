@@ -187,3 +187,20 @@ def test_energy_audit_closes_with_clearances_and_beams():
     assert ds.attrs["solver_contact_events"] > 0
     assert abs(ds.attrs["energy_error_relative"]) < 1e-4
     assert abs(float(ds.dissipated_energy[-1])) < 1e-6 * float(ds.kinetic_energy.max())
+
+
+def test_both_integrators_agree_through_the_first_impacts():
+    """The flagship with beams (A and B at 0.5 mm): generalized-α follows DOPRI5's
+    journal through the first twenty impacts (a twentieth of a revolution) to 1 % of
+    the clearance. Later the impact sequence is chaotic and amplifies the 1e-6 m the
+    two methods differ by (measured: apart by 1e-5 m after 0.06 revolution, for
+    either method's own tolerance change too), so only statistics compare there."""
+    sets = [*BEAMS, *CLEARANCES]
+    explicit = _run(*sets, "solver.rtol=1e-9", "solver.atol=1e-11", revolutions=0.05, per_rev=4000)
+    implicit = _run(
+        *sets, *IMPLICIT, "solver.rtol=1e-7", "solver.atol=1e-9", revolutions=0.05, per_rev=4000
+    )
+    assert explicit.attrs["solver_contact_events"] >= 10
+    e_explicit = explicit.eccentricity.sel(joint="A").values
+    e_implicit = implicit.eccentricity.sel(joint="A").values
+    assert np.max(np.linalg.norm(e_implicit - e_explicit, axis=1)) < 5e-6
