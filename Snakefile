@@ -11,6 +11,7 @@ include: "workflow/rules/simulate.smk"
 include: "workflow/rules/analyze.smk"
 include: "workflow/rules/sweep.smk"
 include: "workflow/rules/experiment.smk"
+include: "workflow/rules/crosscheck.smk"
 include: "workflow/rules/figures.smk"
 include: "workflow/rules/report.smk"
 

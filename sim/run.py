@@ -175,9 +175,17 @@ def diagnose(integ: Integration, status: int) -> str:
         )
     if status == stepping.STEP_COLLAPSE:
         where = f"; the largest contact force is at joint '{busiest}'" if busiest else ""
+        if integ.opts[stepping.OPT_METHOD] == stepping.METHOD_DOPRI5:
+            cause = "a force discontinuity or stiffness the explicit method cannot pass"
+        else:
+            failures = int(integ.stats[stepping.S_NEWTON_FAILURES])
+            cause = (
+                f"Newton failed {failures} times in the run: a force law the implicit "
+                "method cannot converge on (try solver.method=dopri5 or a smaller solver.rtol)"
+            )
         return (
             f"{at}: the step size collapsed below {integ.opts[stepping.OPT_HMIN]:.3g} s{where}: "
-            "a force discontinuity or stiffness the explicit method cannot pass"
+            + cause
         )
     if status == SINGULAR:
         return (

@@ -73,8 +73,6 @@ class Work(NamedTuple):
     it_fresh: np.ndarray  # (1,) 1 while the factors in it_mat are usable, else 0
     ga_acc: np.ndarray  # (n,) pseudo-acceleration a_n at the step's start
     ga_acc_new: np.ndarray  # (n,) a_{n+1}
-    ga_acc_prev: np.ndarray  # (n,) a_{n-1}
-    ga_h: np.ndarray  # (1,) the last accepted step size (0 before the first)
     ga_xdd: np.ndarray  # (n,) the method's own q̈_n
     ga_xdd_new: np.ndarray  # (n,) its q̈_{n+1}
     ga_lam: np.ndarray  # (m,) multipliers λ_n
@@ -160,8 +158,6 @@ def make_work(system: System) -> Work:
         it_fresh=np.zeros(1),
         ga_acc=np.zeros(n),
         ga_acc_new=np.zeros(n),
-        ga_acc_prev=np.zeros(n),
-        ga_h=np.zeros(1),
         ga_xdd=np.zeros(n),
         ga_xdd_new=np.zeros(n),
         ga_lam=np.zeros(m),

@@ -88,33 +88,16 @@ def start(sys, work) -> None:
         work.ga_xdd[i] = work.stages[0, n + i]
     for r in range(sys.m):
         work.ga_lam[r] = work.rhs[r]
-    work.ga_h[0] = 0.0
 
 
 @kernel
-def accept(work, h: float) -> None:
-    """Make the step just computed, of size h, the start of the next: a_n, q̈_n, λ_n."""
+def accept(work) -> None:
+    """Make the step just computed the start of the next: a_n, q̈_n, λ_n."""
     for i in range(work.ga_acc.shape[0]):
-        work.ga_acc_prev[i] = work.ga_acc[i]
         work.ga_acc[i] = work.ga_acc_new[i]
         work.ga_xdd[i] = work.ga_xdd_new[i]
     for r in range(work.ga_lam.shape[0]):
         work.ga_lam[r] = work.ga_lam_new[r]
-    work.ga_h[0] = h
-
-
-@kernel
-def _shifted_acceleration(work, i: int, h: float, am: float, af: float) -> float:
-    """a_n for a step of size h. a_n approximates q̈(t_n + (α_m − α_f) h_old), the
-    step before's h_old (Arnold & Brüls 2007, eq. 18); a new step size moves
-    that point, so a_n is moved with it, by (α_m − α_f)(h − h_old) ȧ with
-    ȧ ≈ (a_n − a_{n−1})/h_old. Without this, every change of step size starts
-    a spurious oscillation of q̈ and λ."""
-    h_old = work.ga_h[0]
-    if h_old <= 0.0 or h == h_old:
-        return work.ga_acc[i]
-    rate = (work.ga_acc[i] - work.ga_acc_prev[i]) / h_old
-    return work.ga_acc[i] + (am - af) * (h - h_old) * rate
 
 
 @kernel
@@ -182,7 +165,7 @@ def _newton(sys, work, mem, t, h, y, rtol, atol, rho_inf, factor: bool):
     lam = work.ga_lam_new
     # Predictor: the acceleration carried over.
     for i in range(n):
-        a_old = _shifted_acceleration(work, i, h, am, af)
+        a_old = work.ga_acc[i]
         xdd[i] = x_old[i]
         a_new = ((1.0 - af) * xdd[i] + af * x_old[i] - am * a_old) / (1.0 - am)
         v[i] = y[n + i] + h * ((1.0 - gamma) * a_old + gamma * a_new)
@@ -257,7 +240,7 @@ def step(sys, work, mem, t: float, h: float, y: np.ndarray, rtol: float, atol: f
         work.it_fresh[0] = 0.0  # converging slowly: refresh at the next step
     am, af, beta, _ = coefficients(rho_inf)
     for i in range(n):
-        a_old = _shifted_acceleration(work, i, h, am, af)
+        a_old = work.ga_acc[i]
         work.ga_acc_new[i] = (
             (1.0 - af) * work.ga_xdd_new[i] + af * work.ga_xdd[i] - am * a_old
         ) / (1.0 - am)

@@ -381,7 +381,7 @@ def integrate(
             diag[D_TIME] = t + hs
             return s
         if method == METHOD_GENERALIZED_ALPHA:
-            galpha.accept(work, hs)
+            galpha.accept(work)
         s = _sample(sys, work, mem, method, t, hs, out_t, out_rows, stats, S_OUT, work.yint)
         if s == OK:
             s = _sample(sys, work, mem, method, t, hs, sec_t, sec_rows, stats, S_SEC, work.yint)

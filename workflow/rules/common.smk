@@ -4,6 +4,7 @@ Every study is a config entry (config/config.yaml); this file turns entries into
 `sim` arguments. Rules call these functions by name (no lambdas inside rules).
 """
 
+import importlib.util
 import shlex
 from pathlib import Path
 
@@ -15,8 +16,9 @@ QUICK = str(config.get("quick", False)).lower() == "true"
 DEFAULTS = config["quick_defaults"] if QUICK else config["defaults"]
 DURATION_KEYS = ("scene", "revolutions", "output_per_revolution", "transient")
 STUDIES = [name for name, entry in config["studies"].items() if entry.get("enabled", True)]
-# keys an ideal (every joint ideal, every link rigid) reference run ignores
-IDEAL_IGNORED = (".clearance", ".kind", ".elements")
+# keys an ideal reference run does not take: it is all ideal and rigid (`--ideal --rigid`),
+# and runs the scene's own integrator, DOPRI5, the better one for rigid links
+IDEAL_IGNORED = (".clearance", ".kind", ".elements", "solver.method", "solver.rho_inf")
 
 
 wildcard_constraints:
@@ -60,11 +62,12 @@ def has(name, analysis):
 
 
 def link_overrides():
-    """Scene keys of the link model switch (config `model`)."""
+    """Scene keys of the link model switch and its integrator (config `model`)."""
     model = config["model"]
+    out = {f"solver.{key}": value for key, value in model.get("solver", {}).items()}
     if model["links"] == "rigid":
-        return {f"bodies.{body}.kind": "rigid" for body in model["flexible_bodies"]}
-    out = {}
+        out.update({f"bodies.{body}.kind": "rigid" for body in model["flexible_bodies"]})
+        return out
     for body in model["flexible_bodies"]:
         out[f"bodies.{body}.kind"] = "beam"
         out[f"bodies.{body}.elements"] = model["elements"]
@@ -170,8 +173,72 @@ def sweep_parameter(wildcards):
     return ",".join(study(wildcards.study)["sweep"]["keys"])
 
 
-def fidelity_reference(wildcards):
-    return study(wildcards.study)["reference"]
+#: revolutions `sim analyze` needs after the transient (sim.analysis.run.MIN_REVOLUTIONS)
+ANALYSIS_REVOLUTIONS = 25
+
+
+def fidelity_long_cases(name):
+    """Cases of a fidelity study long enough for the chaos analysis: they feed the
+    long-horizon statistics (peaks, Lyapunov exponents, Poincaré distances)."""
+    need = study(name)["transient"] + ANALYSIS_REVOLUTIONS
+    return [
+        case
+        for case in case_names(name)
+        if case_overrides(name, case)["simulation.revolutions"] >= need
+    ]
+
+
+def fidelity_analyses(wildcards):
+    return [analysis_file(wildcards.study, case) for case in fidelity_long_cases(wildcards.study)]
+
+
+def fidelity_settings(wildcards):
+    """Reference cases, short-horizon window and transient of a fidelity study."""
+    settings = study(wildcards.study)
+    return {
+        "reference": settings["reference"],
+        "window": settings.get("window", 2.0),
+        "long_reference": settings.get("long_reference"),
+        "transient": settings["transient"],
+    }
+
+
+# ---------------------------------------------------------------- cross-check (Exudyn)
+#: the cross-check study's runs need Exudyn (pip install -e '.[crosscheck]'); without it the
+#: study writes only its table, which says so
+EXUDYN = importlib.util.find_spec("exudyn") is not None
+
+
+def crosscheck_overrides(wildcards):
+    """Scene overrides of a cross-check case (as a dict, for load_scene)."""
+    return case_overrides(wildcards.study, wildcards.case)
+
+
+def crosscheck_exudyn(wildcards):
+    """Exudyn's integration settings of a cross-check case (sim.crosscheck.run.ExudynSettings)."""
+    return study(wildcards.study)["crosscheck"].get("exudyn", {}).get(wildcards.case, {})
+
+
+def crosscheck_lowpass(wildcards):
+    return study(wildcards.study)["crosscheck"]["lowpass_hz"]
+
+
+def crosscheck_has_clearance(name, case):
+    """Whether a cross-check case has a clearance joint (its statistics figure is made)."""
+    return any(
+        key.endswith(".clearance") and float(value) > 0
+        for key, value in case_overrides(name, case).items()
+    )
+
+
+def crosscheck_metrics(wildcards):
+    """Metrics of every case of a cross-check study; none when Exudyn is not importable."""
+    if not EXUDYN:
+        return []
+    return [
+        f"results/{wildcards.study}/crosscheck/{case}/metrics.json"
+        for case in case_names(wildcards.study)
+    ]
 
 
 # ---------------------------------------------------------------- experiment data
@@ -232,6 +299,15 @@ def study_targets(name):
         out += [f"{base}/figures/work_precision.png"]
     if has(name, "extremes"):
         out += [f"{base}/tables/extremes.csv", f"{base}/tables/extremes.html"]
+    if has(name, "crosscheck"):
+        out += [f"{base}/tables/crosscheck.{ext}" for ext in ("csv", "html", "json")]
+        if EXUDYN:
+            out += [f"{base}/crosscheck/{case}/overlay.png" for case in cases]
+            out += [
+                f"{base}/crosscheck/{case}/statistics.png"
+                for case in cases
+                if crosscheck_has_clearance(name, case)
+            ]
     return out
 
 
@@ -266,6 +342,9 @@ def landing_inputs(wildcards):
         name = enabled(role)
         if name and has(name, "bifurcation"):
             out[f"{role}_table"] = f"results/{name}/tables/bifurcation_lyapunov.csv"
+    name = enabled("cross_check")
+    if name and has(name, "crosscheck"):
+        out["cross_check_summary"] = f"results/{name}/tables/crosscheck.json"
     name = enabled("experiment")
     if name and has(name, "experiment"):
         case = case_names(name)[0]
