@@ -217,12 +217,39 @@ def claim_all_joints(inp) -> dict:
     return {"claim": claim, "verdict": verdict, "evidence": evidence}
 
 
-def claim_cross_check() -> dict:
+def claim_cross_check(inp) -> dict:
+    """Our model against an independent code (Exudyn, in place of the paper's ADAMS): the
+    largest difference of each response over its peak, per case of the cross-check study."""
+    claim = (
+        "The model agrees with ADAMS on displacement and velocity, less on acceleration and torque."
+    )
+    if "cross_check_summary" not in inp:
+        return {"claim": claim, "verdict": NOT_EVALUATED, "evidence": "cross-check not run"}
+    summary = json.loads(Path(inp["cross_check_summary"]).read_text())
+    if not summary.get("ran"):
+        reason = summary.get("reason", "Exudyn is not installed")
+        return {"claim": claim, "verdict": NOT_EVALUATED, "evidence": f"not run: {reason}"}
+    parts, close, rougher = [], True, False
+    for name, case in summary["cases"].items():
+        shares = {
+            signal: stats["raw"]["max"] / stats["raw"]["peak"]
+            for signal, stats in case["deterministic"].items()
+        }
+        parts.append(
+            f"{name}: " + ", ".join(f"{signal} {share:.2g}" for signal, share in shares.items())
+        )
+        if not case["clearance"]:
+            smooth = max(shares["displacement"], shares["velocity"])
+            close &= smooth < 1e-3
+            rougher |= max(shares["acceleration"], shares["drive_torque"]) > smooth
+    # Agreement where the motion is deterministic; "less" where the beams vibrate.
+    verdict = "supported" if close and rougher else ("mixed" if close else "not supported")
     return {
-        "claim": "The model agrees with ADAMS on displacement and velocity, less on "
-        "acceleration and torque.",
-        "verdict": NOT_EVALUATED,
-        "evidence": "the cross-check study (independent solver, issue 8) is disabled",
+        "claim": claim,
+        "verdict": verdict,
+        "evidence": "Exudyn in place of ADAMS; largest difference over the peak, raw signals "
+        "(the clearance case separates by chaos: statistics in the cross-check tables): "
+        + "; ".join(parts),
     }
 
 
@@ -258,7 +285,7 @@ def main(sm) -> None:
         claim_flagship_chaos(inp),
         claim_bifurcation(inp),
         claim_all_joints(inp),
-        claim_cross_check(),
+        claim_cross_check(inp),
     ]
     experiment, meta = claim_experiment(inp)
     claims.append(experiment)
