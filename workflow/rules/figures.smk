@@ -190,6 +190,7 @@ rule bifurcation_figure:
 rule work_precision:
     input:
         runs=runs_of_study,
+        analyses=fidelity_analyses,
     output:
         csv="results/{study}/tables/work_precision.csv",
         html=report(
@@ -206,7 +207,7 @@ rule work_precision:
         ),
     params:
         cases=study_cases,
-        reference=fidelity_reference,
+        fidelity=fidelity_settings,
     conda:
         "../envs/sim.yaml"
     log:

@@ -80,10 +80,25 @@ def rule_bifurcation_figure(sm) -> None:
 
 
 def rule_work_precision(sm) -> None:
+    settings = sm.params.fidelity
     runs = [_open(path) for path in sm.input.runs]
-    table = tables.work_precision_table(list(sm.params.cases), runs, sm.params.reference)
-    _write_table(table, sm.output, "Work against precision")
-    style.save(tables.plot_work_precision(table), sm.output.figure)
+    analyses = {Path(path).stem: _open(path) for path in sm.input.analyses}
+    table = tables.work_precision_table(
+        list(sm.params.cases),
+        runs,
+        reference=settings["reference"],
+        window=settings["window"],
+        analyses=analyses,
+        long_reference=settings["long_reference"],
+        transient=settings["transient"],
+    )
+    note = (
+        f"short horizon: first {settings['window']:g} revolutions against "
+        f"{settings['reference']}; long horizon: {len(analyses)} runs against "
+        f"{settings['long_reference']} after {settings['transient']} transient revolutions"
+    )
+    _write_table(table, sm.output, "Work against precision", note)
+    style.save(tables.plot_work_precision(table, settings["window"]), sm.output.figure)
 
 
 def rule_extremes_table(sm) -> None:

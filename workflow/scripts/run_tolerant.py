@@ -37,7 +37,9 @@ def _checks(run: Path, ideal: Path | None, limits: dict) -> tuple[bool, list[str
         if energy > limits.get("energy_error_relative", 1e-2):
             problems.append(f"energy audit {energy:.3g} of the energy scale")
         numbers["solver_wall_time_s"] = float(ds.attrs["solver_wall_time_s"])
+        numbers["real_time_factor"] = float(ds.attrs["real_time_factor"])
         numbers["contact_events"] = int(ds.attrs["solver_contact_events"])
+        numbers["max_penetration_m"] = float(ds.penetration.max()) if ds.sizes["joint"] else 0.0
         if ideal is not None:
             with xr.open_dataset(ideal) as ref:
                 a = ds.position.sel(body="slider", axis="y").values
