@@ -72,7 +72,7 @@ def test_quick_workflow_end_to_end(tmp_path):
             shutil.copytree(source, work / item)
         else:
             shutil.copy(source, work / item)
-    done = _snakemake("-j2", "--configfile", "config/quick.yaml", cwd=work, timeout=900)
+    done = _snakemake("-j2", "--configfile", "config/quick.yaml", cwd=work, timeout=1800)
     assert done.returncode == 0, done.stderr[-4000:]
     targets = _snakemake(
         "-n", "--configfile", "config/quick.yaml", "--forceall", "--quiet", "all", cwd=work
