@@ -23,9 +23,12 @@ that its blocks are of one order (Arnold & Brüls, sec. 4):
     [ M (1 − α_m)/(1 − α_f) + γ h C_t + β h² K_t   Φ_qᵀ ] [ Δq       ]   [ −β h² r ]
     [ Φ_q                                           0    ] [ β h² Δλ ] = [ −Φ      ]
 
-with r = M q̈ + Φ_qᵀ λ − Q, K_t = −∂Q/∂q and C_t = −∂Q/∂q̇ (`sim.solve.tangent`);
-factored once per step (simplified Newton), convergence judged by the rate of
-the corrections (Hairer & Wanner, Solving ODEs II, IV.8).
+with r = M q̈ + Φ_qᵀ λ − Q, K_t = −∂Q/∂q and C_t = −∂Q/∂q̇ (`sim.solve.tangent`):
+simplified Newton, the factors kept from step to step while Newton converges
+with them (Hairer & Wanner, Solving ODEs II, IV.8), convergence judged on the
+residual. What is reported (accelerations, torque, contact outputs) comes from
+the equations of motion solved at each step's end, not from the method's own
+q̈ and λ.
 
 Step control: the local error of q is estimated as (β − 1/6) h² (q̈_{n+1} − q̈_n)
 (Zienkiewicz & Xie, Earthquake Eng. Struct. Dyn. 20, 1991; Géradin & Cardona,
@@ -61,11 +64,11 @@ Hairer & Wanner, 0.01–0.1). The residual, not the correction of q, is tested:
 q̈ and λ follow from q with a factor 1/(β h²), so a q converged to a share of
 atol can leave forces and accelerations wrong by tens of newtons."""
 ROUNDOFF = 1e-14
+"""Relative size of a Newton correction of q that is round-off (float64 ε ≈ 2e-16
+times the condition of the iteration matrix's scaled q block)."""
 STALL = 1e-10
 """Relative correction below which a residual that stops falling is taken as
 stalled at its round-off floor, not as diverging: iterate on to ROUNDOFF."""
-"""Relative size of a Newton correction of q that is round-off (float64 ε ≈ 2e-16
-times the condition of the iteration matrix's scaled q block)."""
 SAFE = 0.9
 
 
@@ -215,13 +218,13 @@ def _newton(sys, work, mem, t, h, y, rtol, atol, rho_inf, factor: bool):
 
 @kernel
 def step(sys, work, mem, t: float, h: float, y: np.ndarray, rtol: float, atol: float, rho_inf):
-    """One step from (t, y), ẏ in work.stages[0], a_n and λ_n in work: the new
+    """One step from (t, y), ẏ in work.stages[0], a_n, q̈_n and λ_n in work: the new
     state into work.ynew, its derivative into work.stages[6], the Hermite
     extension into work.dense. Returns (status, error scaled to the tolerance,
     force evaluations, iteration matrices); an error of ∞ when Newton fails.
 
     The iteration matrix is kept from step to step while Newton converges with
-    it (its h-dependent terms are small at the step sizes contact forces), and
+    it (its h-dependent terms are small at the short steps contacts force), and
     refreshed when it does not: a stale matrix slows convergence, it never
     changes the converged solution."""
     n = sys.n
