@@ -31,8 +31,8 @@ Every run is one process after compilation (a warm-up run is not timed). --quick
 settings (tolerances 1e-3, 1e-5, 1e-7, looser references, 1 and 2 elements) for a check of the
 script in minutes.
 
-Usage: python benchmarks/work_precision.py [--quick] [--long] [--window R] [--duration R]
-       [--budget S] [--methods M ...] [--csv FILE]
+Usage: python benchmarks/work_precision.py [--quick] [--long | --only-long] [--window R]
+       [--duration R] [--budget S] [--methods M ...] [--csv FILE]
 """
 
 import argparse
@@ -312,18 +312,23 @@ def analysis_of(ds: xr.Dataset) -> xr.Dataset:
     return analyze_run(ds.isel(time=slice(None, None, every)), transient_revolutions=TRANSIENT)
 
 
-def affordable(setting: Setting, short_rows: list[dict], period: float, budget: float) -> bool:
-    """Whether a long run of `setting` fits the budget (s), estimated from the real-time factor
-    of its short run at the same tolerance; printed when it does not."""
-    rtf = [r["real_time_factor"] for r in short_rows if r["setting"] == setting.label]
-    estimate = LONG_REVOLUTIONS * period / rtf[0] if rtf else math.inf
+def affordable(setting: Setting, duration: float, budget: float) -> bool:
+    """Whether a long run of `setting` fits the budget (CPU s), estimated from the real-time
+    factor of its short run (`duration` revolutions; the short part's, when it ran); printed
+    when it does not."""
+    probe = attempt(setting, duration)
+    if probe is None:
+        return False
+    period = float(probe.attrs["crank_period"])
+    estimate = LONG_REVOLUTIONS * period / cost(setting, probe)["real_time_factor"]
     if estimate > budget:
         print(f"  {setting.label:34} skipped: ~{estimate:.0f} s estimated > --budget {budget:g} s")
     return estimate <= budget
 
 
-def long_horizon(args, short_rows: list[dict]) -> list[dict]:
-    """200 revolutions: statistics against a rigid reference at a tight tolerance."""
+def long_horizon(args, frames: dict[str, list[dict]]) -> list[dict]:
+    """200 revolutions: statistics against a rigid reference at a tight tolerance (each row
+    is added to frames["long"] and the CSV as it is measured)."""
     reference = Setting(REFERENCE_METHOD, args.long_reference, output_per_revolution=LONG_OUTPUT)
     settings = [reference, dataclasses.replace(reference, rtol=reference.rtol / 2)]
     settings += [
@@ -335,16 +340,15 @@ def long_horizon(args, short_rows: list[dict]) -> list[dict]:
     settings.append(
         Setting(REFERENCE_METHOD, 1e-6, all_clearances=True, output_per_revolution=LONG_OUTPUT)
     )
-    ref_ds = run(reference, LONG_REVOLUTIONS)
-    period = float(ref_ds.attrs["crank_period"])
     settings += [
         Setting(m, 1e-6, e, output_per_revolution=LONG_OUTPUT)
         for m in args.methods
         for e in args.long_elements
-        if affordable(Setting(m, 1e-6, e), short_rows, period, args.budget)
+        if affordable(Setting(m, 1e-6, e), args.duration, args.budget)
     ]
+    ref_ds = run(reference, LONG_REVOLUTIONS)
     ref_analysis = analysis_of(ref_ds)
-    rows = []
+    rows = frames.setdefault("long", [])
     print(
         f"\nLONG HORIZON ({LONG_REVOLUTIONS} rev, {TRANSIENT} transient) against "
         f"{reference.label}: peak differences (relative), Lyapunov exponent differences "
@@ -365,6 +369,7 @@ def long_horizon(args, short_rows: list[dict]) -> list[dict]:
             continue
         row = cost(setting, ds) | statistics(ds, ref_ds, analysis_of(ds), ref_analysis)
         rows.append(row)
+        save(frames, args.csv)
         _RUNS.pop((setting, LONG_REVOLUTIONS))  # 200-revolution outputs are large
         peaks = " ".join(f"{k[5:]} {v:+.1%}" for k, v in row.items() if k.startswith("peak_"))
         lyap = " ".join(f"{k[9:]} {v:+.2g}" for k, v in row.items() if k.startswith("lyapunov_"))
@@ -372,15 +377,18 @@ def long_horizon(args, short_rows: list[dict]) -> list[dict]:
         print(
             f"  {setting.label:34} CPU {row['cpu_time_s']:7.1f} s "
             f"(integrator wall {row['integrator_wall_time_s']:.1f} s) "
-            f"RTF {row['real_time_factor']:6.3g} | "
+            f"RTF {row['real_time_factor']:6.3g} energy {row['energy_error_relative']:.1e} | "
             f"{peaks} | Δλ {lyap} | W {dist}",
             flush=True,
         )
     return rows
 
 
-def write_csv(frames: dict[str, list[dict]], path: str) -> None:
-    """All rows in one CSV (column `part` names the block), written through a temporary file."""
+def save(frames: dict[str, list[dict]], path: str | None) -> None:
+    """All rows so far in one CSV (column `part` names the block), written through a temporary
+    file (a run stopped midway keeps what it measured); nothing without a path."""
+    if not path:
+        return
     table = pd.concat([pd.DataFrame(rows).assign(part=part) for part, rows in frames.items()])
     folder = os.path.dirname(os.path.abspath(path))
     fd, tmp = tempfile.mkstemp(dir=folder, suffix=".tmp")
@@ -393,6 +401,9 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--quick", action="store_true", help="fewer settings, looser references")
     parser.add_argument("--long", action="store_true", help="also the 200-revolution statistics")
+    parser.add_argument(
+        "--only-long", action="store_true", help="the 200-revolution statistics alone"
+    )
     parser.add_argument("--window", type=float, default=0.05, help="short horizon, revolutions")
     parser.add_argument(
         "--duration", type=float, default=0.25, help="short runs, revolutions (timed)"
@@ -427,14 +438,15 @@ def main() -> None:
         f"{', '.join(map(str, args.elements))} elements; flagship A+B 0.5 mm, 150 rpm"
     )
     warm_up([*refs.values(), *(Setting(m, 1e-6, e) for m in args.methods for e in (0, 1))])
-    frames = {"short": short_horizon(args, refs, finest)}
-    frames["convergence"] = convergence(args, refs, finest, frames["short"])
-    frames["saturation"] = saturation(args, refs)
-    frames["clearances"] = clearances(args, refs)
-    if args.long:
-        frames["long"] = long_horizon(args, frames["short"])
-    if args.csv:
-        write_csv(frames, args.csv)
+    frames: dict[str, list[dict]] = {}
+    if not args.only_long:
+        frames["short"] = short_horizon(args, refs, finest)
+        frames["convergence"] = convergence(args, refs, finest, frames["short"])
+        frames["saturation"] = saturation(args, refs)
+        frames["clearances"] = clearances(args, refs)
+        save(frames, args.csv)
+    if args.long or args.only_long:
+        long_horizon(args, frames)
 
 
 if __name__ == "__main__":

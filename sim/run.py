@@ -12,17 +12,19 @@ from dataclasses import dataclass
 import numpy as np
 import xarray as xr
 
-from sim.model.assembly import Layout, build_system, crank_period
+from sim.model.assembly import Layout, build_system, crank_period, omega
+from sim.model.continuation import State, continued_state
 from sim.model.initial import initial_state
 from sim.model.system import (
     CT_SLIDER_LAW,
+    OUT_NORMAL_FORCE,
     RJ_JOURNAL_RADIUS,
     SLIDER_LAW_PAPER,
     TJ_WIDTH,
     System,
     n_gaps,
 )
-from sim.results import build_dataset
+from sim.results import build_dataset, decode_rows, energy_error_relative
 from sim.solve import stepping
 from sim.solve.dae import NONFINITE, SINGULAR, make_work, state_size
 from sim.solve.record import record_row, row_width
@@ -36,6 +38,11 @@ class SimulationError(RuntimeError):
 # means a contact far too soft or a step far too large, not a physical state.
 PENETRATION_BOUND = 0.02  # of the journal radius or the slider width
 VIOLATION_BOUND = 0.01  # of the shortest body dimension, m
+# Energy audit (T + V + U + U_c − W + D drift over the energy scale) that stops a run: far
+# beyond any sound run's (DOPRI5 ≤ 1e-3; generalized-α's numerical damping at ρ∞ = 0.5,
+# 3.4e-2 in 10 revolutions), so reaching it means a step created or lost energy, e.g. a
+# contact force from a wrong velocity.
+ENERGY_BOUND = 0.5
 
 
 @dataclass
@@ -87,11 +94,21 @@ def _shortest_dimension(scene: dict) -> float:
 
 
 def prepare(
-    scene: dict, *, ideal: bool = False, rigid: bool = False, revolutions: float | None = None
+    scene: dict,
+    *,
+    ideal: bool = False,
+    rigid: bool = False,
+    revolutions: float | None = None,
+    start: State | None = None,
 ) -> Integration:
-    """Assemble the system, its initial state and the output buffers."""
+    """Assemble the system, its initial state and the output buffers. The initial state is
+    the assembled one, or with `start` the end of a previous run projected onto this scene
+    (sim.model.continuation; ContinuationError when it cannot be)."""
     system, layout = build_system(scene, ideal=ideal, rigid=rigid)
     q0, qd0 = initial_state(scene, system, layout)
+    mem = np.zeros((n_gaps(system), 3))
+    if start is not None:
+        q0, qd0, mem = continued_state(start, system, layout, q0, omega(scene))
     y = np.concatenate([q0, qd0, [0.0, 0.0]])
     period = crank_period(scene)
     n_rev = scene["simulation"]["revolutions"] if revolutions is None else revolutions
@@ -123,7 +140,7 @@ def prepare(
         system=system,
         layout=layout,
         work=make_work(system),
-        mem=np.zeros((n_gaps(system), 3)),
+        mem=mem,
         y=y,
         st=st,
         opts=opts,
@@ -144,12 +161,43 @@ def prepare(
     return integ
 
 
+def _busiest_joint(integ: Integration) -> str | None:
+    """The clearance joint with the largest contact force at the last evaluation."""
+    joints = integ.layout.clearance_joints
+    return joints[int(np.argmax(integ.work.jout[:, OUT_NORMAL_FORCE]))] if joints else None
+
+
+def energy_drift(integ: Integration) -> str | None:
+    """None while the energy audit of the samples recorded so far is within ENERGY_BOUND;
+    otherwise the diagnosis: the time reached and the joint with the largest contact force."""
+    done = int(integ.stats[stepping.S_OUT])
+    data = decode_rows(integ.out_rows[:done], integ.layout.bodies, integ.layout.clearance_joints)
+    audit = energy_error_relative(data)
+    if audit <= ENERGY_BOUND:
+        return None
+    busiest = _busiest_joint(integ)
+    where = f" (largest contact force at joint '{busiest}')" if busiest else ""
+    method = integ.opts[stepping.OPT_METHOD]
+    hint = (
+        "tighten solver.rtol"
+        if method == stepping.METHOD_DOPRI5
+        else (
+            "the implicit method passed a stiff contact with a wrong velocity: tighten "
+            "solver.rtol or use solver.method=dopri5"
+        )
+    )
+    return (
+        f"by t = {integ.out_t[done - 1]:.6g} s the energy audit is off by {audit:.3g} of the "
+        f"energy scale (bound {ENERGY_BOUND}){where}: a step created or lost energy; {hint}"
+    )
+
+
 def diagnose(integ: Integration, status: int) -> str:
     """A failure message: the time, the joint and the likely cause."""
     t = integ.diag[stepping.D_TIME]
     joints = integ.layout.clearance_joints
     jout = integ.work.jout
-    busiest = joints[int(np.argmax(jout[:, 1]))] if len(joints) else None
+    busiest = _busiest_joint(integ)
     at = f"at t = {t:.6g} s"
     if status == stepping.PENETRATION:
         j = int(integ.stats[stepping.S_CULPRIT])
@@ -234,11 +282,28 @@ def simulate(
     rigid: bool = False,
     revolutions: float | None = None,
 ) -> xr.Dataset:
-    """Simulate a validated scene and return its output Dataset.
+    """Simulate a validated scene from its assembled state and return its output Dataset.
 
     ideal / rigid replace every clearance joint by an ideal one / every beam by a
     rigid link (the reference mechanism); `revolutions` overrides the duration."""
-    integ = prepare(scene, ideal=ideal, rigid=rigid, revolutions=revolutions)
+    return simulate_from(
+        scene, None, progress=progress, ideal=ideal, rigid=rigid, revolutions=revolutions
+    )[0]
+
+
+def simulate_from(
+    scene: dict,
+    start: State | None,
+    *,
+    progress: bool = False,
+    ideal: bool = False,
+    rigid: bool = False,
+    revolutions: float | None = None,
+) -> tuple[xr.Dataset, State]:
+    """`simulate`, started from the end of a previous run (`start`, projected onto this
+    scene by sim.model.continuation) or, with None, from the assembled state; returns the
+    output Dataset and the final state, from which a neighbouring scene can continue."""
+    integ = prepare(scene, ideal=ideal, rigid=rigid, revolutions=revolutions, start=start)
     period = crank_period(scene)
     n_rev = scene["simulation"]["revolutions"] if revolutions is None else revolutions
     t_end = n_rev * period
@@ -249,9 +314,10 @@ def simulate(
     while t < t_end:
         t = min(t + chunk, t_end)
         status = integ.advance(t)
-        if status != stepping.OK:
+        failure = diagnose(integ, status) if status != stepping.OK else energy_drift(integ)
+        if failure is not None:
             bar.close()
-            raise SimulationError(f"scene '{scene['name']}': " + diagnose(integ, status))
+            raise SimulationError(f"scene '{scene['name']}': " + failure)
         bar.update(t)
     bar.close()
     wall = time.perf_counter() - wall0
@@ -277,8 +343,19 @@ def simulate(
         "solver_wall_time_s": wall,
         "real_time_factor": t_end / wall if wall > 0 else float("inf"),
         "simulated_time_s": t_end,
+        "initial_state": "assembled" if start is None else "continued",
     }
-    return build_dataset(
+    n = integ.system.n
+    final = State(
+        q=integ.y[:n].copy(),
+        qd=integ.y[n : 2 * n].copy(),
+        mem=integ.mem.copy(),
+        revolutions=n_rev,
+        omega=omega(scene),
+        system=integ.system,
+        layout=integ.layout,
+    )
+    dataset = build_dataset(
         times=integ.out_t,
         rows=integ.out_rows,
         section_rows=integ.sec_rows,
@@ -288,3 +365,4 @@ def simulate(
         scene=scene,
         provenance=provenance,
     )
+    return dataset, final

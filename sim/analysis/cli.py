@@ -139,6 +139,14 @@ def register_sweep(subparsers: argparse._SubParsersAction) -> argparse.ArgumentP
         ),
     )
     parser.add_argument(
+        "--continuation",
+        action="store_true",
+        help=(
+            "start each value from the previous value's final state, projected onto its "
+            "scene, instead of the assembled state (a shorter transient; values in order)"
+        ),
+    )
+    parser.add_argument(
         "--label", help="short parameter name for file names (default: the key's last part)"
     )
     parser.add_argument(
@@ -176,6 +184,7 @@ def sweep_command(args: argparse.Namespace) -> int:
         out_dir=args.out_dir,
         label=args.label or args.keys[0].rsplit(".", 1)[-1],
         transient_revolutions=args.transient,
+        continuation=args.continuation,
         progress=not args.quiet,
     )
     write_netcdf(combined, args.output)

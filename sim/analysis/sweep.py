@@ -1,5 +1,6 @@
 """Parameter sweeps: one scene simulated at every value of a parameter, its Poincaré samples
-collected into one bifurcation dataset (``sim sweep``)."""
+collected into one bifurcation dataset (``sim sweep``), each value started from its assembled
+state or, by continuation, from the previous value's final state."""
 
 import json
 from collections.abc import Sequence
@@ -8,8 +9,9 @@ from pathlib import Path
 import xarray as xr
 
 from sim.analysis.bifurcation import SECTION_VARIABLES, combine_sweep
+from sim.model.continuation import ContinuationError
 from sim.results import write_netcdf
-from sim.run import simulate
+from sim.run import simulate_from
 from sim.scene import load_scene
 
 
@@ -35,6 +37,7 @@ def run_sweep(
     out_dir: Path,
     label: str,
     transient_revolutions: int,
+    continuation: bool = False,
     progress: bool = False,
 ) -> xr.Dataset:
     """Simulate a scene at every value of a parameter and stack the Poincaré samples.
@@ -42,9 +45,17 @@ def run_sweep(
     Every value gives one scene: the scene with ``overrides``, then every key of ``keys``
     set to the value (so ``joints.A.clearance`` and ``joints.B.clearance`` can move
     together). All scenes are loaded and validated before the first simulation, so a bad key
-    or value fails at once. Each is simulated by :func:`sim.run.simulate` (the code of
-    ``sim run``) from its assembled initial state, over ``simulation.revolutions``, and
-    written to ``out_dir / point_file(label, value)``.
+    or value fails at once. Each is simulated by :func:`sim.run.simulate_from` (the code of
+    ``sim run``) over ``simulation.revolutions`` and written to
+    ``out_dir / point_file(label, value)``.
+
+    Every value starts from its assembled state, or with ``continuation`` from the previous
+    value's final state projected onto its scene (:mod:`sim.model.continuation`: angles
+    back by whole turns, velocities scaled with the crank speed, clearance coordinates with
+    the clearance). The motion then starts on (or near) the neighbouring attractor, so the
+    transient to drop is shorter; the values should be in sweep order. A value whose model
+    differs (a clearance of 0 makes the joint ideal) starts assembled. Each run's
+    ``initial_state`` attribute says which, and why.
 
     Args:
         scene_source: built-in scene name or YAML path.
@@ -55,6 +66,7 @@ def run_sweep(
         label: short name of the parameter, used in file names.
         transient_revolutions: revolutions a reader should drop before plotting; recorded
             in the combined dataset (every revolution is kept).
+        continuation: start each value from the previous value's final state.
         progress: show each run's progress line.
 
     Returns:
@@ -74,8 +86,18 @@ def run_sweep(
                 f"transient of {transient_revolutions} revolutions"
             )
     sections, paths = [], []
+    final, previous_value = None, None
     for scene, value in zip(scenes, values, strict=True):
-        run = simulate(scene, progress=progress)
+        start, origin = None, "assembled"
+        if continuation and final is not None:
+            start, origin = final, f"continued from {label} = {previous_value:g}"
+        try:
+            run, final = simulate_from(scene, start, progress=progress)
+        except ContinuationError as why:
+            run, final = simulate_from(scene, None, progress=progress)
+            origin = f"assembled: no continuation from {label} = {previous_value:g}, {why}"
+        run.attrs["initial_state"] = origin
+        previous_value = value
         paths.append(write_netcdf(run, Path(out_dir) / point_file(label, value)))
         sections.append(run[list(SECTION_VARIABLES)])
     combined = combine_sweep(sections, ",".join(keys), values)
@@ -83,6 +105,7 @@ def run_sweep(
         scene=scene_source,
         overrides=json.dumps(list(overrides)),
         transient_revolutions=transient_revolutions,
+        continuation=int(continuation),
         runs=" ".join(str(path) for path in paths),
     )
     return combined

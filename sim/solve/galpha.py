@@ -56,7 +56,7 @@ from sim.solve.dense import hermite_coefficients, interpolate
 from sim.solve.linalg import lu_in_place, lu_solve_in_place
 from sim.solve.tangent import iteration_matrix
 
-MAX_NEWTON = 7
+MAX_NEWTON = 20
 """Newton iterations per step before the step is retried shorter."""
 NEWTON_TOL = 0.1
 """Newton stops when the residual is below this share of the tolerance (the κ of
@@ -69,6 +69,13 @@ times the condition of the iteration matrix's scaled q block)."""
 STALL = 1e-10
 """Relative correction below which a residual that stops falling is taken as
 stalled at its round-off floor, not as diverging: iterate on to ROUNDOFF."""
+SLOW = 0.3
+"""Contraction of the residual per iteration above which the iteration matrix is
+re-formed at the current iterate: a matrix formed before a contact closed lacks
+the contact's stiffness and damping, and simplified Newton then crawls (measured
+0.85 per iteration on the 30 rpm six-bar) or diverges."""
+MAX_REFRESH = 8
+"""Iteration matrices re-formed within one Newton solve before the step is retried shorter."""
 SAFE = 0.9
 
 
@@ -154,10 +161,12 @@ def _residual(sys, work, mem, t, q, v, xdd, lam, bh2, rtol, atol) -> float:
 @kernel
 def _newton(sys, work, mem, t, h, y, rtol, atol, rho_inf, factor: bool):
     """Predict the state at t + h, then correct it by simplified Newton with the
-    factors in work.it_mat, refreshed first when `factor`, until the residual of
-    the equations of motion and constraints is within NEWTON_TOL of the
-    tolerance. Returns (status, converged, force evaluations, iteration
-    matrices, solves); on convergence work holds the evaluation at the new state."""
+    factors in work.it_mat, refreshed first when `factor` and again at the
+    current iterate whenever the residual contracts by less than SLOW (at most
+    MAX_REFRESH matrices), until the residual of the equations of motion and
+    constraints is within NEWTON_TOL of the tolerance. Returns (status,
+    converged, force evaluations, iteration matrices, solves); on convergence
+    work holds the evaluation at the new state."""
     n = sys.n
     m = sys.m
     am, af, beta, gamma = coefficients(rho_inf)
@@ -190,12 +199,17 @@ def _newton(sys, work, mem, t, h, y, rtol, atol, rho_inf, factor: bool):
             return OK, True, it + 1, matrices, it
         if it == MAX_NEWTON or not np.isfinite(size):
             break
-        if size >= previous and not largest < STALL:
-            break  # diverging, and not merely stalled at round-off
+        refresh = factor and it == 0
+        if size > SLOW * previous and not largest < STALL:
+            # Crawling or diverging, and not merely stalled at round-off: the matrix
+            # no longer describes the forces (a contact closed or opened since).
+            if matrices >= MAX_REFRESH:
+                break
+            refresh = True
         previous = size
-        if factor and it == 0:
+        if refresh:
             iteration_matrix(sys, work, mem, tn, q, v, (1.0 - am) / (1.0 - af), gamma * h, bh2)
-            matrices = 1
+            matrices += 1
             work.it_fresh[0] = 1.0
             if not lu_in_place(work.it_mat, work.it_piv):
                 work.it_fresh[0] = 0.0

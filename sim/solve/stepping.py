@@ -37,6 +37,7 @@ METHODS = {"dopri5": METHOD_DOPRI5, "generalized_alpha": METHOD_GENERALIZED_ALPH
 
 # Integrator status codes beyond the right-hand side's OK / SINGULAR / NONFINITE.
 MAX_STEPS, STEP_COLLAPSE, PENETRATION, VIOLATION = 3, 4, 5, 6
+GRAZE_PROBES = (0.25, 0.5, 0.75)  # fractions of a generalized-α step probed for a graze
 
 # Indices into the integrator state `st`.
 ST_T, ST_H, ST_FACOLD, ST_FSAL = range(4)
@@ -133,16 +134,26 @@ def _first_event(sys, work, mem, y: np.ndarray) -> tuple[int, float]:
 
 
 @kernel
-def _grazed(sys, work, mem) -> bool:
-    """True if an evaluation inside the step (a stage, a Newton iterate)
-    penetrated a gap that is apart at both ends of the step: a contact the sign
-    test at the step's ends cannot see."""
+def _grazed(sys, work, mem, method: int) -> bool:
+    """True if the motion inside the step penetrated a gap that is apart at both
+    ends of the step: a contact the sign test at the step's ends cannot see.
+    DOPRI5: a stage evaluation penetrated it (marked in mem[g, 2]). Generalized-α:
+    its Newton iterates are not points of the motion (an iterate that overshoots
+    into a wall says nothing about the motion), so the step's continuous
+    extension is probed at GRAZE_PROBES instead."""
     n = sys.n
     yn = work.ynew
+    if method == METHOD_GENERALIZED_ALPHA:
+        for g in range(mem.shape[0]):
+            mem[g, 2] = 0.0
+        for theta in GRAZE_PROBES:
+            interpolate(work, theta, 2 * n, work.yint)
+            for g in range(mem.shape[0]):
+                if mem[g, 0] == 0.0 and gap(sys, g, work.yint[:n], work.yint[n : 2 * n])[0] > 0.0:
+                    mem[g, 2] = 1.0
     for g in range(mem.shape[0]):
         if mem[g, 2] > 0.0 and mem[g, 0] == 0.0:
-            d1, _ = gap(sys, g, yn[:n], yn[n : 2 * n])
-            if d1 <= 0.0:
+            if gap(sys, g, yn[:n], yn[n : 2 * n])[0] <= 0.0:
                 return True
     return False
 
@@ -347,7 +358,7 @@ def integrate(
         s, err = _step(sys, work, mem, method, t, hs, y, opts, stats)
         if s != OK:
             err = np.inf
-        if err <= 1.0 and forced == 0.0 and hs > 4.0 * hmin and _grazed(sys, work, mem):
+        if err <= 1.0 and forced == 0.0 and hs > 4.0 * hmin and _grazed(sys, work, mem, method):
             err = np.inf  # resolve the graze with shorter steps
         if not err <= 1.0:
             stats[S_REJECTED] += 1

@@ -1,6 +1,7 @@
 """`sim sweep`: one scene over a parameter, every run written, the Poincaré samples stacked."""
 
 import numpy as np
+import pytest
 import xarray as xr
 
 from sim.cli import main
@@ -21,14 +22,19 @@ def slider_at_crank_angle_zero() -> np.ndarray:
     return np.array([0.15, d[1] - np.sqrt(l4**2 - (0.15 - d[0]) ** 2)])
 
 
-def test_speed_sweep_of_the_ideal_sixbar(tmp_path):
+@pytest.mark.parametrize("continuation", [False, True])
+def test_speed_sweep_of_the_ideal_sixbar(tmp_path, continuation):
+    """Cold or continued (the 120 rpm run starts from the 60 rpm run's end, angles brought
+    back by whole turns, velocities doubled), the sections obey the closed-form kinematics."""
     out_dir, combined_file = tmp_path / "runs", tmp_path / "bifurcation.nc"
     argv = ["sweep", "sixbar", "-q", *SHORT, "--key", "drive.speed_rpm", "--values", "60", "120"]
     argv += ["--transient", "1", "--out-dir", str(out_dir), "-o", str(combined_file)]
-    assert main(argv) == 0
+    assert main(argv + ["--continuation"] * continuation) == 0
     assert sorted(p.name for p in out_dir.iterdir()) == ["speed_rpm-120.nc", "speed_rpm-60.nc"]
     with xr.open_dataset(out_dir / "speed_rpm-120.nc") as run:
         assert '"speed_rpm": 120' in run.attrs["scene"]
+        origin = "continued from speed_rpm = 60" if continuation else "assembled"
+        assert run.attrs["initial_state"] == origin
     with xr.open_dataset(combined_file) as sweep:
         assert sweep["parameter"].attrs["name"] == "drive.speed_rpm"
         np.testing.assert_array_equal(sweep["parameter"].values, [60.0, 120.0])
@@ -60,6 +66,28 @@ def test_clearance_sweep_through_the_ideal_joint(tmp_path):
         assert np.isnan(eccentricity.sel(parameter=0.0)).all()
         journal = np.hypot(*eccentricity.sel(parameter=5e-4, joint="A").values.T)
         assert np.isfinite(journal).all() and journal.max() < 1.1 * 5e-4
+
+
+def test_continued_clearance_sweep_restarts_where_the_model_changes(tmp_path):
+    """0.5 → 0.4 mm continues (the journal's eccentricity scaled into the smaller bearing);
+    0.4 mm → 0 makes the joints ideal, another model: that value starts assembled."""
+    out_dir = tmp_path / "runs"
+    argv = ["sweep", "sixbar", "-q", *SHORT, "--key", "joints.A.clearance"]
+    argv += ["--key", "joints.B.clearance", "--values", "5e-4", "4e-4", "0", "--continuation"]
+    argv += ["--transient", "1", "--label", "clearance", "--out-dir", str(out_dir)]
+    assert main([*argv, "-o", str(tmp_path / "b.nc")]) == 0
+    origins = {}
+    for value in ("0.0005", "0.0004", "0"):
+        with xr.open_dataset(out_dir / f"clearance-{value}.nc") as run:
+            origins[value] = run.attrs["initial_state"]
+            if value == "0.0004":
+                journal = np.hypot(*run.eccentricity.sel(joint="A").values.T)
+                assert journal[0] > 0.5 * 4e-4  # not centred: it kept its place in the bearing
+                assert journal.max() < 1.1 * 4e-4
+    assert origins["0.0005"] == "assembled"
+    assert origins["0.0004"] == "continued from clearance = 0.0005"
+    assert origins["0"].startswith("assembled: no continuation from clearance = 0.0004")
+    assert "a clearance of 0 makes a joint ideal" in origins["0"]
 
 
 def test_bad_key_is_refused_before_any_run(tmp_path, capsys):

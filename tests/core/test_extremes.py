@@ -4,10 +4,13 @@ them at full length). Clearance 0 and the approach to the ideal joint of A and B
 test_clearance_limits.py; here clearance 0 is checked on every joint with flexible links.
 
 Bounds, from what the quantities mean rather than from the measured values:
-- constraint violation below 1 % of the smallest clearance of the list (1 µm): drift of the
-  ideal joints must not compete with the clearance being modelled;
-- energy audit below 1e-4 of the energy scale (the bound of test_energy.py for clearance runs).
-Measured at these durations: violation ≤ 7e-10 m, audit ≤ 8e-6 (rigid), ≤ 1e-10 (beams).
+- constraint violation below 1 % of the case's smallest clearance (10 nm for the 1 µm case):
+  drift of the ideal joints must not compete with the clearance being modelled;
+- energy audit below 1e-3 of the energy scale: the bound under which the default fidelity
+  (rtol 1e-5) was chosen (README, "Default fidelity": 4.7e-4 over the 200-revolution
+  flagship); test_energy.py holds the audit itself to 1e-4 at rtol 1e-6.
+Measured at these durations and the default rtol 1e-5: violation ≤ 3e-8 m (600 rpm, 6e-5 of
+its 0.5 mm clearance; 7e-10 m at rtol 1e-6), audit ≤ 1.1e-4 (rigid), ≤ 1e-10 (beams).
 """
 
 import numpy as np
@@ -24,8 +27,8 @@ SLOW = ["drive.speed_rpm=5", "simulation.revolutions=0.05", "simulation.output_p
 FLEXIBLE = [f"bodies.{body}.kind=beam" for body in ("rod2", "rod3", "rod4")]
 ALL_JOINTS = ("A", "C", "D1", "D2", "E", "B")
 
-VIOLATION_BOUND = 1e-8  # m
-ENERGY_BOUND = 1e-4
+VIOLATION_SHARE = 0.01  # of the case's smallest clearance
+ENERGY_BOUND = 1e-3
 
 
 def elements(n: int) -> list[str]:
@@ -54,7 +57,8 @@ def test_extreme_case_finishes_within_bounds(run, case):
     ds = run("sixbar", *AB, *CASES[case])
     for name in ("position", "velocity", "acceleration", "drive_torque", "normal_force"):
         assert np.isfinite(ds[name].values).all(), name
-    assert float(ds.constraint_violation.max()) < VIOLATION_BOUND
+    clearance = min(scene_of(ds)["joints"][joint]["clearance"] for joint in ("A", "B"))
+    assert float(ds.constraint_violation.max()) < VIOLATION_SHARE * clearance
     assert ds.attrs["energy_error_relative"] < ENERGY_BOUND
     # the case reached the contacts it is about
     assert ds.attrs["solver_contact_events"] > 0
