@@ -1,0 +1,35 @@
+"""The implicit integrator through sustained, rattling contact (issue 7).
+
+At 30 rpm the journal of A and the slider rest on and rattle against their walls: the contact
+closes and opens between Newton iterates, where a matrix formed out of contact lacks its
+stiffness. Before Newton re-formed its matrix on slow contraction, this rigid case collapsed
+the step at t = 0.085 s. The pointwise motion is too sensitive to compare (DOPRI5 at rtol 1e-5
+and 1e-8 differ by half the clearance within 0.1 revolution), so the references are the energy
+balance and the clearance itself."""
+
+import numpy as np
+
+from sim.run import simulate
+from sim.scene import load_scene
+
+RATTLE = [
+    "drive.speed_rpm=30",
+    "joints.A.clearance=2e-4",
+    "joints.B.clearance=2e-4",
+    "contact.friction=0",
+    "simulation.revolutions=0.25",
+    "solver.method=generalized_alpha",
+    "solver.rtol=1e-4",
+    "solver.atol=1e-6",
+]
+
+
+def test_rattling_contact_runs_with_a_closing_energy_audit():
+    ds = simulate(load_scene("sixbar", RATTLE))
+    assert ds.attrs["solver_contact_events"] > 100  # it did rattle
+    # measured 1.4e-4; the audit of a sound run at this tolerance
+    assert ds.attrs["energy_error_relative"] < 1e-3
+    journal = np.hypot(*ds.eccentricity.sel(joint="A").values.T)
+    assert journal.max() < 1.05 * 2e-4  # Hertz penetration, far below 5 % of the clearance
+    # Newton converges on most steps (measured: fails on 4.6 %, then the step is retried)
+    assert ds.attrs["solver_newton_failures"] < 0.15 * ds.attrs["solver_accepted_steps"]
