@@ -16,6 +16,19 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
+from sim.results import scene_of
+
+
+def violation_bound(ds: xr.Dataset, limits: dict) -> float:
+    """Largest admissible constraint drift (m): `constraint_violation_share` of the run's
+    smallest clearance (drift must not compete with the clearance being modelled), or
+    `constraint_violation` for a run without clearance."""
+    joints = scene_of(ds)["joints"].values()
+    clearances = [j.get("clearance", 0.0) for j in joints if j.get("clearance", 0.0) > 0.0]
+    if clearances and "constraint_violation_share" in limits:
+        return limits["constraint_violation_share"] * min(clearances)
+    return limits.get("constraint_violation", 1e-4)
+
 
 def _checks(run: Path, ideal: Path | None, limits: dict) -> tuple[bool, list[str], dict]:
     numbers = {}
@@ -30,7 +43,7 @@ def _checks(run: Path, ideal: Path | None, limits: dict) -> tuple[bool, list[str
             problems.append("non-finite results")
         violation = float(ds.constraint_violation.max())
         numbers["constraint_violation_m"] = violation
-        if violation > limits.get("constraint_violation", 1e-4):
+        if violation > violation_bound(ds, limits):
             problems.append(f"constraint violation {violation:.3g} m")
         energy = float(ds.attrs["energy_error_relative"])
         numbers["energy_error_relative"] = energy
