@@ -99,7 +99,7 @@ def decode_rows(rows: np.ndarray, bodies: list[str], joints: list[str]) -> dict[
 
 def energy_balance(data: xr.Dataset | dict[str, np.ndarray]) -> xr.DataArray | np.ndarray:
     """T + V + U + U_c − W + D minus its initial value (J): zero up to numerical error.
-    `data`: a run's Dataset, or sample columns as `_decode` gives them."""
+    `data`: a run's Dataset, or sample columns as `decode_rows` gives them."""
     total = (
         data["kinetic_energy"]
         + data["potential_energy"]

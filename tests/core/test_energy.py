@@ -70,3 +70,18 @@ def test_a_run_whose_audit_drifts_beyond_the_bound_stops(monkeypatch, tmp_path):
     scene = load_scene("sixbar", ["simulation.revolutions=2", *AB])
     with pytest.raises(SimulationError, match=r"by t = .* s the energy audit is off by .*joint"):
         simulate(scene)
+
+
+def test_the_watch_during_a_run_sees_the_audit_of_the_finished_run(monkeypatch):
+    """The watch reads each sample once and keeps only the samples that set the audit; its
+    last figure must equal the audit computed afterwards over every sample."""
+    import sim.run
+
+    seen = []
+    audit = sim.run.EnergyWatch.audit
+    monkeypatch.setattr(
+        sim.run.EnergyWatch, "audit", lambda self: seen.append(audit(self)) or seen[-1]
+    )
+    ds = simulate(load_scene("sixbar", ["simulation.revolutions=3", *AB]))
+    assert len(seen) >= 12  # at least one look per quarter revolution
+    assert seen[-1] == pytest.approx(ds.attrs["energy_error_relative"], rel=1e-12)
