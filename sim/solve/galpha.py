@@ -247,10 +247,11 @@ def step(sys, work, mem, t: float, h: float, y: np.ndarray, rtol: float, atol: f
         sys, work, mem, t, h, y, rtol, atol, rho_inf, not fresh
     )
     if s == OK and not converged and fresh:
-        s, converged, more, jacobians, iterations = _newton(
+        s, converged, more, more_jacobians, iterations = _newton(
             sys, work, mem, t, h, y, rtol, atol, rho_inf, True
         )
         evaluations += more
+        jacobians += more_jacobians
     if s != OK or not converged:
         return s, np.inf, evaluations, jacobians
     if iterations > 3:
