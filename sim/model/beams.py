@@ -64,11 +64,42 @@ def beam_forces(sys, q: np.ndarray, qd: np.ndarray, gen: np.ndarray, scratch: np
         for i in range(size):
             gen[o + i] -= out[i]
         strain += ancf.beam_strain_energy(qb, dshape, axial_w, d2shape, bending_w)
-        beta = sys.beam_f[b, BM_DAMPING]
-        if beta > 0.0:
-            qdb = qd[o : o + size]
-            ancf.beam_damping_forces(qb, qdb, dshape, axial_w, d2shape, bending_w, beta, out)
+        if sys.beam_f[b, BM_DAMPING] > 0.0:
+            p_diss += _damping_forces(sys, b, q, qd, out)
             for i in range(size):
                 gen[o + i] -= out[i]
-                p_diss += out[i] * qdb[i]
     return p_diss, strain
+
+
+@kernel
+def _damping_forces(sys, b: int, q: np.ndarray, qd: np.ndarray, out: np.ndarray) -> float:
+    """The stiffness-proportional damping forces F_d of beam b into out (its
+    coordinates, N); returns the power they dissipate, F_d · q̇ (W)."""
+    o = sys.beam_off[b]
+    size = 4 * (sys.beam_nel[b] + 1)
+    qdb = qd[o : o + size]
+    ancf.beam_damping_forces(
+        q[o : o + size],
+        qdb,
+        sys.beam_dshape[b],
+        sys.beam_axial_w[b],
+        sys.beam_d2shape[b],
+        sys.beam_bending_w[b],
+        sys.beam_f[b, BM_DAMPING],
+        out,
+    )
+    power = 0.0
+    for i in range(size):
+        power += out[i] * qdb[i]
+    return power
+
+
+@kernel
+def beam_damping_power(sys, q: np.ndarray, qd: np.ndarray, scratch: np.ndarray) -> float:
+    """The power dissipated by the damping of every beam at (q, q̇), W; the
+    elastic forces, which dissipate nothing, are not evaluated."""
+    power = 0.0
+    for b in range(sys.beam_off.shape[0]):
+        if sys.beam_f[b, BM_DAMPING] > 0.0:
+            power += _damping_forces(sys, b, q, qd, scratch)
+    return power

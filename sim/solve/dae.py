@@ -21,7 +21,7 @@ from typing import NamedTuple
 import numpy as np
 
 from sim.jit import kernel
-from sim.model.beams import beam_forces
+from sim.model.beams import beam_damping_power, beam_forces
 from sim.model.clearance import revolute_clearance_forces, translational_clearance_forces
 from sim.model.constraints import constraint_terms
 from sim.model.system import (
@@ -80,7 +80,7 @@ class Work(NamedTuple):
     beam_kq: np.ndarray  # (s, s) one beam's stiffness Jacobian, s its largest size
     beam_kv: np.ndarray  # (s, s) one beam's damping Jacobian
     fd_base: np.ndarray  # (n,) contact forces at the unperturbed state
-    fd_gen: np.ndarray  # (n,) contact forces at a perturbed state
+    fd_gen: np.ndarray  # (n,) contact forces at a perturbed state, or evaluated aside
     fd_jout: np.ndarray  # (joints, N_JOINT_OUT) their discarded outputs
     contact_coords: np.ndarray  # coordinates the clearance contact forces depend on
 
@@ -197,6 +197,27 @@ def generalized_forces(sys, work, t: float, q: np.ndarray, qd: np.ndarray, mem: 
     work.scalars[SC_DISSIPATED_POWER] = pr + pt + pb
     work.scalars[SC_CONTACT_ENERGY] = ur + ut
     work.scalars[SC_STRAIN_ENERGY] = us
+
+
+@kernel
+def contact_forces(sys, work, q: np.ndarray, qd: np.ndarray, mem: np.ndarray, out) -> float:
+    """The generalized clearance contact forces alone into `out` (N, N·m), their
+    per-joint outputs discarded; returns the power their damping and friction
+    dissipate (W). Leaves the evaluation that work holds intact."""
+    out[:] = 0.0
+    pr, _ = revolute_clearance_forces(sys, q, qd, mem, out, work.fd_jout)
+    pt, _ = translational_clearance_forces(sys, q, qd, mem, out, work.fd_jout)
+    return pr + pt
+
+
+@kernel
+def dissipated_power(sys, work, q: np.ndarray, qd: np.ndarray, mem: np.ndarray) -> float:
+    """The power dissipated at (q, q̇) by contact damping, friction and beam
+    damping (W), computed aside: the evaluation that work holds is left intact,
+    and the beams' elastic forces, which dissipate nothing, are not evaluated."""
+    return contact_forces(sys, work, q, qd, mem, work.fd_gen) + beam_damping_power(
+        sys, q, qd, work.scratch
+    )
 
 
 @kernel

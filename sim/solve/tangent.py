@@ -21,8 +21,8 @@ import numpy as np
 
 from sim.jit import kernel
 from sim.model import ancf
-from sim.model.clearance import revolute_clearance_forces, translational_clearance_forces
 from sim.model.system import BM_DAMPING
+from sim.solve.dae import contact_forces
 
 FD_STEP_Q = 1e-10
 """Forward-difference step of positions (m) and angles (rad): far below the
@@ -33,24 +33,16 @@ tolerance v0 = 1e-4 m/s over which the friction coefficient ramps."""
 
 
 @kernel
-def _contact_forces(sys, work, q: np.ndarray, qd: np.ndarray, mem: np.ndarray, out) -> None:
-    """The generalized clearance contact forces alone into `out`."""
-    out[:] = 0.0
-    revolute_clearance_forces(sys, q, qd, mem, out, work.fd_jout)
-    translational_clearance_forces(sys, q, qd, mem, out, work.fd_jout)
-
-
-@kernel
 def _add_contact_tangent(sys, work, mem, q, qd, x: np.ndarray, step: float, coef: float) -> None:
     """mat[i, c] −= coef ∂Q_i/∂x_c for the contact coordinates, x being q or q̇."""
     mat = work.it_mat
     coords = work.contact_coords
-    _contact_forces(sys, work, q, qd, mem, work.fd_base)
+    contact_forces(sys, work, q, qd, mem, work.fd_base)
     for a in range(coords.shape[0]):
         c = coords[a]
         saved = x[c]
         x[c] = saved + step
-        _contact_forces(sys, work, q, qd, mem, work.fd_gen)
+        contact_forces(sys, work, q, qd, mem, work.fd_gen)
         x[c] = saved
         for b in range(coords.shape[0]):
             i = coords[b]
