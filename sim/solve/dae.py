@@ -235,48 +235,98 @@ def rhs(sys, work, mem: np.ndarray, t: float, y: np.ndarray, ydot: np.ndarray) -
 @kernel
 def accelerations(sys, work, qd: np.ndarray, ydot: np.ndarray) -> int:
     """ẏ from the forces and constraint terms that work holds for a state with
-    velocities q̇: the Schur-complement solve of the module docstring. Φ_q is
-    sparse (a row touches at most two bodies), so its products run over the
-    nonzero columns of each row (work.jac_cols) only."""
+    velocities q̇: the Schur-complement solve of the module docstring."""
+    if sys.m > 0 and factor_schur(sys, work) != OK:
+        return SINGULAR
+    return factored_accelerations(sys, work, qd, ydot)
+
+
+@kernel
+def factor_schur(sys, work) -> int:
+    """M⁻¹ Φ_qᵀ into work.minv_jt and the Cholesky factor of the Schur complement
+    S = Φ_q M⁻¹ Φ_qᵀ into work.schur, from the Φ_q that work holds. Φ_q is sparse
+    (a row touches at most two bodies), so its products run over the nonzero
+    columns of each row (work.jac_cols) only. OK, or SINGULAR when Φ_q has lost
+    rank."""
+    m = sys.m
+    jac = work.jac
+    cols = work.jac_cols
+    y_mt = work.minv_jt
+    y_mt[:, :] = 0.0
+    for r in range(m):
+        for c in range(work.jac_ncols[r]):
+            k = cols[r, c]
+            blk = work.col_block[k]
+            for i in range(sys.blk_start[blk], sys.blk_end[blk]):
+                y_mt[i, r] += sys.mass_inv[i, k] * jac[r, k]
+    schur = work.schur
+    for i in range(m):
+        for j in range(i + 1):
+            acc = 0.0
+            for c in range(work.jac_ncols[i]):
+                k = cols[i, c]
+                acc += jac[i, k] * y_mt[k, j]
+            schur[i, j] = acc
+            schur[j, i] = acc
+    return OK if cholesky_in_place(schur, m) else SINGULAR
+
+
+@kernel
+def _velocity_residual(work, r: int, qd: np.ndarray) -> float:
+    """Φ_q q̇ − ν of constraint row r."""
+    vel = -work.nu[r]
+    for c in range(work.jac_ncols[r]):
+        k = work.jac_cols[r, c]
+        vel += work.jac[r, k] * qd[k]
+    return vel
+
+
+@kernel
+def project_velocities(sys, work, qd: np.ndarray) -> float:
+    """q̇ ← q̇ − M⁻¹ Φ_qᵀ S⁻¹ (Φ_q q̇ − ν): the velocity nearest to q̇ in the
+    kinetic-energy norm that satisfies the velocity constraints Φ_q q̇ = ν
+    (a mass-orthogonal projection, e.g. Bayo & Ledesma, Nonlinear Dyn. 9, 1996).
+    Needs `factor_schur` at the same Φ_q; uses work.rhs. Returns the largest
+    change of a velocity."""
+    m = sys.m
+    mu = work.rhs
+    for r in range(m):
+        mu[r] = _velocity_residual(work, r, qd)
+    cholesky_solve_in_place(work.schur, m, mu)
+    largest = 0.0
+    for i in range(sys.n):
+        change = 0.0
+        for r in range(m):
+            change += work.minv_jt[i, r] * mu[r]
+        qd[i] -= change
+        largest = max(largest, abs(change))
+    return largest
+
+
+@kernel
+def factored_accelerations(sys, work, qd: np.ndarray, ydot: np.ndarray) -> int:
+    """`accelerations` with the Schur complement already factored (`factor_schur`)."""
     n = sys.n
     m = sys.m
     block_times(sys, sys.mass_inv, work.gen, work.minv_gen)
     qdd = work.qdd
     if m > 0:
         jac = work.jac
-        cols = work.jac_cols
         alpha = sys.baumgarte[0]
         beta = sys.baumgarte[1]
         b = work.rhs
-        y_mt = work.minv_jt
-        y_mt[:, :] = 0.0
         for r in range(m):
-            vel = -work.nu[r]
             acc = 0.0
             for c in range(work.jac_ncols[r]):
-                k = cols[r, c]
-                vel += jac[r, k] * qd[k]
+                k = work.jac_cols[r, c]
                 acc += jac[r, k] * work.minv_gen[k]
-                blk = work.col_block[k]
-                for i in range(sys.blk_start[blk], sys.blk_end[blk]):
-                    y_mt[i, r] += sys.mass_inv[i, k] * jac[r, k]
+            vel = _velocity_residual(work, r, qd)
             b[r] = acc - (work.gamma[r] - 2.0 * alpha * vel - beta * beta * work.phi[r])
-        schur = work.schur
-        for i in range(m):
-            for j in range(i + 1):
-                acc = 0.0
-                for c in range(work.jac_ncols[i]):
-                    k = cols[i, c]
-                    acc += jac[i, k] * y_mt[k, j]
-                schur[i, j] = acc
-                schur[j, i] = acc
-        if not cholesky_in_place(schur, m):
-            return SINGULAR
-        cholesky_solve_in_place(schur, m, b)
+        cholesky_solve_in_place(work.schur, m, b)
         for i in range(n):
             acc = work.minv_gen[i]
             for r in range(m):
-                acc -= y_mt[i, r] * b[r]
+                acc -= work.minv_jt[i, r] * b[r]
             qdd[i] = acc
     else:
         for i in range(n):
