@@ -282,25 +282,21 @@ def _velocity_residual(work, r: int, qd: np.ndarray) -> float:
 
 
 @kernel
-def project_velocities(sys, work, qd: np.ndarray) -> float:
+def project_velocities(sys, work, qd: np.ndarray) -> None:
     """q̇ ← q̇ − M⁻¹ Φ_qᵀ S⁻¹ (Φ_q q̇ − ν): the velocity nearest to q̇ in the
     kinetic-energy norm that satisfies the velocity constraints Φ_q q̇ = ν
     (a mass-orthogonal projection, e.g. Bayo & Ledesma, Nonlinear Dyn. 9, 1996).
-    Needs `factor_schur` at the same Φ_q; uses work.rhs. Returns the largest
-    change of a velocity."""
+    Needs `factor_schur` at the same Φ_q; uses work.rhs."""
     m = sys.m
     mu = work.rhs
     for r in range(m):
         mu[r] = _velocity_residual(work, r, qd)
     cholesky_solve_in_place(work.schur, m, mu)
-    largest = 0.0
     for i in range(sys.n):
         change = 0.0
         for r in range(m):
             change += work.minv_jt[i, r] * mu[r]
         qd[i] -= change
-        largest = max(largest, abs(change))
-    return largest
 
 
 @kernel
