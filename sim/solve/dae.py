@@ -292,11 +292,17 @@ def project_velocities(sys, work, qd: np.ndarray) -> None:
     for r in range(m):
         mu[r] = _velocity_residual(work, r, qd)
     cholesky_solve_in_place(work.schur, m, mu)
+    _less_constraint_term(sys, work, qd, mu, qd)
+
+
+@kernel
+def _less_constraint_term(sys, work, base: np.ndarray, mult: np.ndarray, out: np.ndarray) -> None:
+    """out = base − M⁻¹ Φ_qᵀ mult, with M⁻¹ Φ_qᵀ from `factor_schur`; out may be base."""
     for i in range(sys.n):
-        change = 0.0
-        for r in range(m):
-            change += work.minv_jt[i, r] * mu[r]
-        qd[i] -= change
+        acc = base[i]
+        for r in range(sys.m):
+            acc -= work.minv_jt[i, r] * mult[r]
+        out[i] = acc
 
 
 @kernel
@@ -319,11 +325,7 @@ def factored_accelerations(sys, work, qd: np.ndarray, ydot: np.ndarray) -> int:
             vel = _velocity_residual(work, r, qd)
             b[r] = acc - (work.gamma[r] - 2.0 * alpha * vel - beta * beta * work.phi[r])
         cholesky_solve_in_place(work.schur, m, b)
-        for i in range(n):
-            acc = work.minv_gen[i]
-            for r in range(m):
-                acc -= work.minv_jt[i, r] * b[r]
-            qdd[i] = acc
+        _less_constraint_term(sys, work, work.minv_gen, b, qdd)
     else:
         for i in range(n):
             qdd[i] = work.minv_gen[i]
