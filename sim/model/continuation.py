@@ -31,7 +31,7 @@ import numpy as np
 
 from sim.model.assembly import Layout
 from sim.model.clearance import eccentricity, gap, guide_frame
-from sim.model.initial import constraint_values
+from sim.model.initial import constraint_values, minimum_norm_newton
 from sim.model.system import (
     GAPS_PER_SLIDER,
     RJ_CLEARANCE,
@@ -118,19 +118,6 @@ def _check_same_model(previous: State, system: System, layout: Layout) -> None:
         raise ContinuationError(f"the previous run ended after {turns:g} revolutions, not whole")
 
 
-def _projected(residual, jacobian, x: np.ndarray, what: str) -> np.ndarray:
-    """Newton with minimum-norm corrections from x until the residual falls below NEWTON_TOL."""
-    for _ in range(30):
-        r = residual(x)
-        if np.max(np.abs(r)) < NEWTON_TOL:
-            return x
-        x = x - np.linalg.lstsq(jacobian(x), r, rcond=None)[0]
-    raise ContinuationError(
-        f"the {what} do not close: residual {np.max(np.abs(residual(x))):.3g} after 30 Newton "
-        "iterations"
-    )
-
-
 def continued_state(
     previous: State, system: System, layout: Layout, q_assembled: np.ndarray, omega: float
 ) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
@@ -148,16 +135,17 @@ def continued_state(
     c_target = k * clearance_coordinates(previous.system, q)
     zero = np.zeros_like(q)
 
-    def position_residual(x):
-        phi = constraint_values(system, x, zero, 0.0)[0]
-        return np.concatenate([phi, clearance_coordinates(system, x) - c_target])
+    def linearize(x):
+        phi, phi_q, _ = constraint_values(system, x, zero, 0.0)
+        residual = np.concatenate([phi, clearance_coordinates(system, x) - c_target])
+        return residual, np.vstack([phi_q, clearance_jacobian(system, x)])
 
-    def position_jacobian(x):
-        return np.vstack(
-            [constraint_values(system, x, zero, 0.0)[1], clearance_jacobian(system, x)]
+    q, converged = minimum_norm_newton(linearize, q, NEWTON_TOL, 30)
+    if not converged:
+        raise ContinuationError(
+            "the loops with the scaled clearances do not close: residual "
+            f"{np.max(np.abs(linearize(q)[0])):.3g} after 30 Newton iterations"
         )
-
-    q = _projected(position_residual, position_jacobian, q, "loops with the scaled clearances")
     _, phi_q, nu = constraint_values(system, q, zero, 0.0)
     a = np.vstack([phi_q, clearance_jacobian(system, q)])
     c_rate = k * s * (clearance_jacobian(previous.system, previous.q) @ previous.qd)

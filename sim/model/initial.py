@@ -10,6 +10,7 @@ by default, deformed to carry its loads (`quasi_static_beams`).
 """
 
 import math
+from collections.abc import Callable
 
 import numpy as np
 
@@ -29,16 +30,37 @@ def constraint_values(system: System, q: np.ndarray, qd: np.ndarray, t: float):
     return phi, jac, nu
 
 
+def minimum_norm_newton(
+    linearize: Callable[[np.ndarray], tuple[np.ndarray, np.ndarray]],
+    x0: np.ndarray,
+    tolerance: float,
+    iterations: int,
+) -> tuple[np.ndarray, bool]:
+    """Solve r(x) = 0 from x0 by Newton with minimum-norm corrections Δx = −r_x⁺ r, which
+    leave the directions r does not constrain at their start values (Nikravesh 1988, ch. 4).
+    `linearize(x)` returns (r, r_x); converged when max |r| < `tolerance` (units of r).
+    Returns the last iterate and whether it converged within `iterations` corrections."""
+    x = x0.copy()
+    for _ in range(iterations):
+        r, r_x = linearize(x)
+        if np.max(np.abs(r), initial=0.0) < tolerance:
+            return x, True
+        x -= np.linalg.lstsq(r_x, r, rcond=None)[0]
+    return x, bool(np.max(np.abs(linearize(x)[0]), initial=0.0) < tolerance)
+
+
 def solve_positions(system: System, layout: Layout, q0: np.ndarray, t: float = 0.0) -> np.ndarray:
     """Close every loop from the guess q0; AssemblyError names the worst joint."""
-    q = q0.copy()
-    zero = np.zeros_like(q)
-    for _ in range(50):
+    zero = np.zeros_like(q0)
+
+    def linearize(q):
         phi, jac, _ = constraint_values(system, q, zero, t)
-        if np.max(np.abs(phi), initial=0.0) < 1e-13:
-            return q
-        q -= np.linalg.lstsq(jac, phi, rcond=None)[0]
-    phi, _, _ = constraint_values(system, q, zero, t)
+        return phi, jac
+
+    q, converged = minimum_norm_newton(linearize, q0, 1e-13, 50)
+    if converged:
+        return q
+    phi, _ = linearize(q)
     worst = int(np.argmax(np.abs(phi)))
     joint = layout.joint_of_row(worst)
     raise AssemblyError(
