@@ -36,23 +36,28 @@ def test_rattling_contact_runs_with_a_closing_energy_audit():
     assert ds.attrs["solver_newton_failures"] < 0.15 * ds.attrs["solver_accepted_steps"]
 
 
+def _rigid_audit(rpm: float, rtol: float, *sets: str) -> float:
+    """Energy audit of a quarter revolution of the rigid six-bar, A and B at 0.5 mm, by
+    generalized-α at `rtol` (atol = rtol/100)."""
+    case = [
+        f"drive.speed_rpm={rpm}",
+        "joints.A.clearance=5e-4",
+        "joints.B.clearance=5e-4",
+        "simulation.revolutions=0.25",
+        "solver.method=generalized_alpha",
+        f"solver.rtol={rtol}",
+        f"solver.atol={rtol * 1e-2}",
+        *sets,
+    ]
+    return simulate(load_scene("sixbar", case)).attrs["energy_error_relative"]
+
+
 def test_energy_audit_converges_through_contact_events_at_tight_tolerances():
     """After a contact event the steps restart near 1e-9 s, where the index-3 method's
     velocities carry the position constraints' convergence error times γ/(β h): before the
     velocities were projected onto Φ_q q̇ = ν, the kinetic energy tripled for a few steps
     at t = 0.0396 s and the audit at rtol 1e-8 ended at 1.5e-3, worse than at 1e-6."""
-    case = [
-        "drive.speed_rpm=30",
-        "joints.A.clearance=5e-4",
-        "joints.B.clearance=5e-4",
-        "simulation.revolutions=0.25",
-        "solver.method=generalized_alpha",
-    ]
-    audit = {}
-    for rtol in (1e-6, 1e-8):
-        tolerances = [f"solver.rtol={rtol}", f"solver.atol={rtol * 1e-2}"]
-        ds = simulate(load_scene("sixbar", [*case, *tolerances]))
-        audit[rtol] = ds.attrs["energy_error_relative"]
+    audit = {rtol: _rigid_audit(30, rtol) for rtol in (1e-6, 1e-8)}
     # measured 7.5e-5 and 4.9e-6: the audit falls with the tolerance
     assert audit[1e-8] < 1e-5
     assert audit[1e-8] < 0.2 * audit[1e-6]
@@ -67,15 +72,5 @@ def test_energy_audit_holds_when_newton_fails_at_a_contact(samples, rtol):
     while the method's decaying (−ρ∞)ⁿ mode carried an alternating error of the kinetic
     energy that the error estimate of q does not see. Measured with the retry: 2.0e-5 and
     4.2e-6, as at 20 and 30 rpm."""
-    case = [
-        "drive.speed_rpm=40",
-        "joints.A.clearance=5e-4",
-        "joints.B.clearance=5e-4",
-        "simulation.revolutions=0.25",
-        f"simulation.output_per_revolution={samples}",
-        "solver.method=generalized_alpha",
-        f"solver.rtol={rtol}",
-        f"solver.atol={rtol * 1e-2}",
-    ]
-    ds = simulate(load_scene("sixbar", case))
-    assert ds.attrs["energy_error_relative"] < 1e-4
+    audit = _rigid_audit(40, rtol, f"simulation.output_per_revolution={samples}")
+    assert audit < 1e-4
