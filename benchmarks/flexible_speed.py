@@ -6,14 +6,22 @@ the real-time factor, steps, rejected steps, force evaluations, iteration matric
 Newton failures, and where one implicit step's time goes (the compiled kernels timed
 one by one, since a Python profiler cannot see inside them).
 
+With --why it prints instead what sets the implicit method's step count: the natural
+frequencies of the linearized flexible mechanism at the start, and the steps per
+revolution of the flagship beside its parts (rigid links with the clearances, beams
+with ideal joints) and beside the two ways of taking the ringing out (maximal numerical
+damping ρ∞ = 0, and 1 % modal damping of the beams).
+
 Usage: python benchmarks/flexible_speed.py [--revolutions N] [--explicit-revolutions M]
-       [--set key=value ...]
+       [--why] [--set key=value ...]
 """
 
 import argparse
 import time
 
 import numba
+import numpy as np
+import scipy.linalg
 
 from sim.model.constraints import constraint_terms
 from sim.run import prepare, simulate
@@ -29,9 +37,10 @@ FLAGSHIP = [
 ]
 
 
-def run(method: str, revolutions: float, extra: list[str]) -> dict:
-    """One simulation after a short warm-up run (compilation); its statistics."""
-    sets = [*FLAGSHIP, f"solver.method={method}", *extra]
+def run(method: str, revolutions: float, scene_sets: list[str]) -> dict:
+    """One simulation of the six-bar with these overrides, after a short warm-up run
+    (compilation); its statistics."""
+    sets = [*scene_sets, f"solver.method={method}"]
     simulate(load_scene("sixbar", [*sets, "simulation.revolutions=0.005"]))
     ds = simulate(load_scene("sixbar", [*sets, f"simulation.revolutions={revolutions}"]))
     return ds.attrs
@@ -92,6 +101,54 @@ def kernel_costs() -> dict[str, float]:
     return out
 
 
+def natural_frequencies(sets: list[str]) -> np.ndarray:
+    """Natural frequencies (Hz) of the mechanism linearized at its assembled start, with
+    every joint ideal: K_t x = ω² M x on the null space of Φ_q (the iteration matrix's
+    mass and stiffness blocks; the geometric stiffness of the constraint forces, which
+    it leaves out, is left out here too)."""
+    integ = prepare(load_scene("sixbar", [s for s in sets if not s.startswith("joints.")]))
+    system, work, mem, y = integ.system, integ.work, integ.mem, integ.y
+    n = system.n
+    q, v = y[:n].copy(), np.zeros(n)
+    constraint_terms(system, 0.0, q, v, work.phi, work.jac, work.gamma, work.nu)
+    tangent.iteration_matrix(system, work, mem, 0.0, q, v, 1.0, 0.0, 0.0)
+    mass = work.it_mat[:n, :n].copy()
+    tangent.iteration_matrix(system, work, mem, 0.0, q, v, 0.0, 0.0, 1.0)
+    stiffness = work.it_mat[:n, :n].copy()
+    basis = scipy.linalg.null_space(work.jac)
+    omega2 = scipy.linalg.eigh(
+        basis.T @ stiffness @ basis, basis.T @ mass @ basis, eigvals_only=True
+    )
+    return np.sqrt(np.clip(omega2, 0.0, None)) / (2.0 * np.pi)
+
+
+def why(revolutions: float, extra: list[str]) -> None:
+    """Print the spectrum and the steps per revolution of the flagship's variants."""
+    sets = [*FLAGSHIP, *extra]
+    freqs = natural_frequencies(sets)
+    print("natural frequencies of the flexible mechanism, all joints ideal (kHz):")
+    print("  " + " ".join(f"{f / 1e3:.2f}" for f in freqs))
+    beams = [s for s in FLAGSHIP if s.startswith("bodies.")]
+    joints = [s for s in FLAGSHIP if s.startswith("joints.")]
+    modal = [f"bodies.{b}.damping={{kind: modal, ratio: 0.01}}" for b in ("rod2", "rod3", "rod4")]
+    variants = {
+        "rigid links, A + B clearances": [s for s in sets if s not in beams],
+        "beams, all joints ideal": [s for s in sets if s not in joints],
+        "flagship (beams, A + B clearances)": sets,
+        "flagship, rho_inf = 0": [*sets, "solver.rho_inf=0.0"],
+        "flagship, beams with 1 % modal damping": [*sets, *modal],
+    }
+    print(f"generalized-alpha, {revolutions:g} revolutions:")
+    for name, variant in variants.items():
+        st = run("generalized_alpha", revolutions, variant)
+        steps = st["solver_accepted_steps"] / revolutions
+        mean_step = 1e6 * st["crank_period"] / steps
+        print(
+            f"  {name:40s} {steps:8.0f} steps per revolution (mean {mean_step:6.1f} us), "
+            f"real-time factor {st['real_time_factor']:.2f}"
+        )
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--revolutions", type=float, default=2.0)
@@ -101,14 +158,18 @@ def main() -> None:
         default=0.1,
         help="DOPRI5 resolves the beams' axial modes and is slow: a shorter run",
     )
+    parser.add_argument("--why", action="store_true", help="what sets the step count")
     parser.add_argument("--set", dest="extra", action="append", default=[])
     args = parser.parse_args()
+    if args.why:
+        why(args.revolutions, args.extra)
+        return
     print("flagship: A + B 0.5 mm, 150 rpm, rod2-rod4 beams x 2 elements, rtol 1e-6")
     for method, revs in (
         ("generalized_alpha", args.revolutions),
         ("dopri5", args.explicit_revolutions),
     ):
-        st = run(method, revs, args.extra)
+        st = run(method, revs, [*FLAGSHIP, *args.extra])
         steps = st["solver_accepted_steps"] + st["solver_rejected_steps"]
         print(
             f"  {method:18s} {revs:g} rev: real-time factor {st['real_time_factor']:.3f}, "
