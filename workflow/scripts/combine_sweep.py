@@ -3,6 +3,7 @@
 import xarray as xr
 
 from sim.analysis.bifurcation import combine_sweep
+from sim.results import write_netcdf
 
 
 def main(snakemake) -> None:
@@ -13,7 +14,7 @@ def main(snakemake) -> None:
     # its on-disk encoding must not be carried over to the combined names
     for variable in combined.variables.values():
         variable.encoding = {}
-    combined.to_netcdf(snakemake.output[0])
+    write_netcdf(combined, snakemake.output[0])
     for ds in datasets:
         ds.close()
     with open(snakemake.log[0], "w") as log:
