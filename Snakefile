@@ -1,4 +1,4 @@
-# Reproduction of every study of shared/spec/STUDIES.md: `snakemake -j2` (full),
+# Reproduction of every study of docs/studies.md: `snakemake -j2` (full),
 # `snakemake -j2 --configfile config/quick.yaml` (quick), `snakemake --report report.html`.
 # Studies are entries of config/config.yaml; the rules are grouped by stage in workflow/rules.
 

@@ -7,7 +7,7 @@ after the first from its neighbour's final state):
   - crank speed 90…210 rpm at 0.2 mm clearance;
   - clearance 0.5…0.1 mm (A and B together) at 150 rpm.
 For every value it prints, per joint and axis (Wasserstein distance W₁ of the section
-eccentricities over the clearance, sim.fidelity.section_distance):
+eccentricities over the clearance, sim.studies.fidelity.section_distance):
   - transient: W₁ of the first FIRST revolutions' section points against the run's settled
     part (revolutions TRANSIENT…end): large while the motion is still finding its attractor;
   - picture: W₁ between the continued and the cold run's settled parts, beside the W₁
@@ -20,11 +20,11 @@ Usage: python benchmarks/continuation.py [--revolutions N]
 import argparse
 import time
 
-from sim.analysis.sweep import point_overrides
-from sim.fidelity import poincare_distances, section_distance
 from sim.results import scene_of
 from sim.run import simulate_from
 from sim.scene import load_scene
+from sim.studies.fidelity import poincare_distances, section_distance
+from sim.studies.sweep import point_overrides
 
 FIRST = 5  # revolutions judged as the transient
 TRANSIENT = 20  # revolutions dropped before comparing pictures

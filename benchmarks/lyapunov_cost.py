@@ -2,7 +2,7 @@
 
 On the flagship (rigid six-bar, A and B clearances 0.5 mm, 150 rpm), one process:
   - wall time of one run (`simulate`) at the scene's tolerances (rtol 1e-6) and at the
-    exponent's tolerances (sim.analysis.model_lyapunov.DEFAULT_TOLERANCES);
+    exponent's tolerances (sim.studies.model_lyapunov.DEFAULT_TOLERANCES);
   - the exponent (Benettin, both trajectories on the run's compiled integrator) with its
     standard error, and its cost relative to both runs;
   - the same with d0 / 10 and with the renormalisation interval halved (the result must not
@@ -19,15 +19,15 @@ import time
 
 import numpy as np
 
-from sim.analysis.model_lyapunov import (
+from sim.run import simulate
+from sim.scene import load_scene
+from sim.studies.model_lyapunov import (
     DEFAULT_D0,
     DEFAULT_INTERVAL_REVOLUTIONS,
     DEFAULT_TOLERANCES,
     linkage_lyapunov,
     with_tolerances,
 )
-from sim.run import simulate
-from sim.scene import load_scene
 
 CASE = ["joints.A.clearance=0.5e-3", "joints.B.clearance=0.5e-3"]
 

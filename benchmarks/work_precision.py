@@ -5,7 +5,7 @@ solver method (every `solver.method` the scene schema accepts, read at run time)
 tolerance 1e-3 … 1e-9 (atol = rtol / 100) × link model (rigid; rod2–rod4 ANCF beams with 1, 2,
 4, 8 elements). For each setting it prints the CPU time of the run (s: one core, so that other
 jobs on a shared machine do not inflate it), the real-time factor (simulated s per CPU s) and
-its accuracy, measured by sim.fidelity:
+its accuracy, measured by sim.studies.fidelity:
 
 Short horizon (always): runs of DURATION revolutions (0.25 by default; timed over it), and the
 pointwise RMS / maximum error of the slider acceleration, driving torque and joint A
@@ -46,11 +46,11 @@ from dataclasses import dataclass
 import pandas as pd
 import xarray as xr
 
-from sim import fidelity
 from sim.analysis.run import analyze_run
 from sim.results import scene_of
 from sim.run import SimulationError, simulate
 from sim.scene import SOLVER, load_scene
+from sim.studies import fidelity
 
 FLAGSHIP = ["joints.A.clearance=0.5e-3", "joints.B.clearance=0.5e-3", "drive.speed_rpm=150"]
 EXTRA_CLEARANCES = ("C", "D1", "D2", "E")

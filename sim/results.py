@@ -14,6 +14,7 @@ import numpy as np
 import xarray as xr
 
 from sim import __version__
+from sim.provenance import library_versions_json
 from sim.solve.record import column_layout
 
 AXES = ["x", "y"]
@@ -53,6 +54,25 @@ ATTRS = {
     "peak_acceleration": ("m s-2", "largest |acceleration| over every accepted step and sample"),
     "peak_drive_torque": ("N m", "largest |driving torque| over every accepted step and sample"),
     "peak_normal_force": ("N", "largest contact normal force over every accepted step and sample"),
+    "revolution_peak_acceleration": (
+        "m s-2",
+        "largest |acceleration| over every accepted step and sample of the revolution ending at "
+        "the section",
+    ),
+    "revolution_peak_drive_torque": (
+        "N m",
+        "largest |driving torque| over every accepted step and sample of the revolution ending at "
+        "the section",
+    ),
+    "revolution_peak_normal_force": (
+        "N",
+        "largest contact normal force over every accepted step and sample of the revolution "
+        "ending at the section",
+    ),
+    "revolution_contact_events": (
+        "1",
+        "contact onsets and separations located in the revolution ending at the section",
+    ),
 }
 
 DIMS = {
@@ -129,6 +149,48 @@ def energy_error_relative(data: xr.Dataset | dict[str, np.ndarray]) -> float:
     return float(abs(energy_balance(data)).max()) / energy_scale(data)
 
 
+def revolution_of(times: np.ndarray, period: float) -> np.ndarray:
+    """Revolution of each time (s): r for t in ((r - 1) T, r T], 0 for t = 0; the revolution
+    that ends at Poincaré section r."""
+    return np.ceil(times / period - 1e-9).astype(int).clip(min=0)
+
+
+def _revolution_peaks(
+    rev_peaks: np.ndarray,
+    rev_events: np.ndarray,
+    times: np.ndarray,
+    data: dict[str, np.ndarray],
+    n_sections: int,
+    period: float,
+) -> dict[str, tuple[tuple[str, ...], np.ndarray]]:
+    """Per-revolution peaks over every accepted step (the integrator's `rev_peaks` rows) and
+    every sample of the revolution, as the whole-run peaks are; the part after the last
+    section (a fractional last revolution) is left out."""
+    nb = data["acceleration"].shape[1]
+    steps = rev_peaks[:n_sections]
+    sampled = np.concatenate(
+        [
+            np.abs(data["acceleration"]).reshape(len(times), 2 * nb),
+            np.abs(data["drive_torque"])[:, None],
+            data["normal_force"],
+        ],
+        axis=1,
+    )
+    rev = revolution_of(times, period)
+    keep = rev < n_sections
+    merged = steps.copy()
+    np.maximum.at(merged, rev[keep], sampled[keep])
+    return {
+        "revolution_peak_acceleration": (
+            ("revolution", "body", "axis"),
+            merged[:, : 2 * nb].reshape(n_sections, nb, 2),
+        ),
+        "revolution_peak_drive_torque": (("revolution",), merged[:, 2 * nb]),
+        "revolution_peak_normal_force": (("revolution", "joint"), merged[:, 2 * nb + 1 :]),
+        "revolution_contact_events": (("revolution",), rev_events[:n_sections].copy()),
+    }
+
+
 def build_dataset(
     *,
     times: np.ndarray,
@@ -139,8 +201,12 @@ def build_dataset(
     joints: list[str],
     scene: dict,
     provenance: dict,
+    rev_peaks: np.ndarray | None = None,
+    rev_events: np.ndarray | None = None,
 ) -> xr.Dataset:
-    """The output Dataset of one run from the integrator's sample rows."""
+    """The output Dataset of one run from the integrator's sample rows. With `rev_peaks` and
+    `rev_events` (sim.solve.stepping.integrate) it also holds the peaks and contact events
+    of each revolution, on the sections' `revolution` dimension."""
     data = decode_rows(rows, bodies, joints)
     sections = decode_rows(section_rows, bodies, joints)
     coords = {
@@ -167,6 +233,17 @@ def build_dataset(
         np.maximum(peaks[2 * nb + 1 :], data["normal_force"].max(axis=0, initial=0.0)),
     )
     ds["energy_error"] = energy_balance(ds)
+    if rev_peaks is not None and rev_events is not None:
+        per_revolution = _revolution_peaks(
+            rev_peaks,
+            rev_events,
+            times,
+            data,
+            section_rows.shape[0],
+            float(provenance["crank_period"]),
+        )
+        for name, (dims, values) in per_revolution.items():
+            ds[name] = (dims, values)
     for name, (units, long_name) in ATTRS.items():
         if name in ds.variables:
             ds[name].attrs.update(units=units, long_name=long_name)
@@ -200,8 +277,13 @@ def encoding_for(ds: xr.Dataset) -> dict:
 
 def write_netcdf(ds: xr.Dataset, path: str | os.PathLike) -> Path:
     """Write `ds` to `path` through a temporary file in the same folder, then
-    rename, so that a crash never leaves a half-written file under that name."""
+    rename, so that a crash never leaves a half-written file under that name.
+
+    The file records the library versions it was written with (``library_versions``,
+    JSON); a dataset that already carries them (a combination of runs) keeps its own.
+    """
     path = Path(path)
+    ds = ds.assign_attrs(library_versions=ds.attrs.get("library_versions", library_versions_json()))
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
     os.close(fd)
@@ -217,3 +299,21 @@ def write_netcdf(ds: xr.Dataset, path: str | os.PathLike) -> Path:
 def scene_of(ds: xr.Dataset) -> dict:
     """The resolved scene a run was made from."""
     return json.loads(ds.attrs["scene"])
+
+
+def open_run(path: str | os.PathLike) -> xr.Dataset:
+    """The run file at `path` (netCDF written by `sim run`), read into memory; ValueError
+    naming the file when it is missing, a directory or not netCDF (`sim` reports it with
+    exit code 2)."""
+    path = Path(path)
+    if not path.is_file():
+        what = "is a directory, not a netCDF file" if path.is_dir() else "does not exist"
+        raise ValueError(f"run file '{path}' {what}")
+    try:
+        return xr.load_dataset(path)
+    except (OSError, ValueError) as exc:
+        # xarray's ValueError lists its IO backends; only a netCDF library's reason helps.
+        reason = f" ({exc})" if isinstance(exc, OSError) else ""
+        raise ValueError(
+            f"run file '{path}' is not a netCDF file{reason}: give a file written by `sim run`"
+        ) from None

@@ -12,6 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 import xarray as xr
 
+from sim.ensemble import Member, perturbed
 from sim.model.assembly import Layout, build_system, crank_period, omega
 from sim.model.continuation import State, continued_state
 from sim.model.initial import initial_state
@@ -61,6 +62,8 @@ class Integration:
     sec_t: np.ndarray
     sec_rows: np.ndarray
     peaks: np.ndarray
+    rev_peaks: np.ndarray
+    rev_events: np.ndarray
     pen_bound: np.ndarray
     stats: np.ndarray
     diag: np.ndarray
@@ -80,6 +83,8 @@ class Integration:
             self.sec_t,
             self.sec_rows,
             self.peaks,
+            self.rev_peaks,
+            self.rev_events,
             self.pen_bound,
             self.stats,
             self.diag,
@@ -117,6 +122,8 @@ def prepare(
     out_t = np.arange(n_out) * (period / per_rev)
     sec_t = np.arange(math.floor(n_rev + 1e-9) + 1) * period
     width = row_width(len(layout.bodies), len(layout.clearance_joints))
+    # |acceleration| of each body's reference point (x, y), |drive torque|, each joint's force
+    n_peaks = 2 * len(layout.bodies) + 1 + len(layout.clearance_joints)
     solver = scene["solver"]
     opts = np.zeros(stepping.N_OPTS)
     opts[stepping.OPT_RTOL] = solver["rtol"]
@@ -148,7 +155,10 @@ def prepare(
         out_rows=np.zeros((n_out, width)),
         sec_t=sec_t,
         sec_rows=np.zeros((sec_t.size, width)),
-        peaks=np.zeros(2 * len(layout.bodies) + 1 + len(layout.clearance_joints)),
+        peaks=np.zeros(n_peaks),
+        # one row per revolution (ending at each section), one more for what follows the last
+        rev_peaks=np.zeros((sec_t.size + 1, n_peaks)),
+        rev_events=np.zeros(sec_t.size + 1, dtype=np.int64),
         pen_bound=pen_bound,
         stats=np.zeros(stepping.N_STATS, dtype=np.int64),
         diag=np.zeros(2),
@@ -310,13 +320,21 @@ def simulate(
     ideal: bool = False,
     rigid: bool = False,
     revolutions: float | None = None,
+    member: Member | None = None,
 ) -> xr.Dataset:
     """Simulate a validated scene from its assembled state and return its output Dataset.
 
     ideal / rigid replace every clearance joint by an ideal one / every beam by a
-    rigid link (the reference mechanism); `revolutions` overrides the duration."""
+    rigid link (the reference mechanism); `revolutions` overrides the duration; `member`
+    starts from an ensemble member's perturbed state (sim.ensemble; default the nominal)."""
     return simulate_from(
-        scene, None, progress=progress, ideal=ideal, rigid=rigid, revolutions=revolutions
+        scene,
+        None,
+        progress=progress,
+        ideal=ideal,
+        rigid=rigid,
+        revolutions=revolutions,
+        member=member,
     )[0]
 
 
@@ -328,10 +346,15 @@ def simulate_from(
     ideal: bool = False,
     rigid: bool = False,
     revolutions: float | None = None,
+    member: Member | None = None,
 ) -> tuple[xr.Dataset, State]:
     """`simulate`, started from the end of a previous run (`start`, projected onto this
     scene by sim.model.continuation) or, with None, from the assembled state; returns the
-    output Dataset and the final state, from which a neighbouring scene can continue."""
+    output Dataset and the final state, from which a neighbouring scene can continue.
+    `member`: the ensemble member (sim.ensemble) whose perturbation applies; its index, seed
+    and perturbation are recorded in the Dataset's attributes."""
+    member = Member() if member is None else member
+    scene = perturbed(scene, member)
     integ = prepare(scene, ideal=ideal, rigid=rigid, revolutions=revolutions, start=start)
     period = crank_period(scene)
     n_rev = scene["simulation"]["revolutions"] if revolutions is None else revolutions
@@ -374,6 +397,7 @@ def simulate_from(
         "real_time_factor": t_end / wall if wall > 0 else float("inf"),
         "simulated_time_s": t_end,
         "initial_state": "assembled" if start is None else "continued",
+        **member.attrs(),
     }
     n = integ.system.n
     final = State(
@@ -390,6 +414,8 @@ def simulate_from(
         rows=integ.out_rows,
         section_rows=integ.sec_rows,
         peaks=integ.peaks,
+        rev_peaks=integ.rev_peaks,
+        rev_events=integ.rev_events,
         bodies=integ.layout.bodies,
         joints=integ.layout.clearance_joints,
         scene=scene,

@@ -167,13 +167,40 @@ def builtin_names() -> list[str]:
 
 
 def _read_yaml(text: str, source: str) -> dict:
+    loader = _Loader(text)
     try:
-        data = parse_yaml(text)
+        node = loader.get_single_node()
+        _refuse_duplicate_keys(node, source)
+        data = None if node is None else loader.construct_document(node)
     except yaml.YAMLError as exc:
         raise SceneError(f"scene {source}: not valid YAML: {exc}") from None
+    finally:
+        loader.dispose()
     if not isinstance(data, dict):
         raise SceneError(f"scene {source}: the file must hold a mapping of keys, not {data!r}")
     return data
+
+
+def _refuse_duplicate_keys(node: yaml.Node | None, source: str, where: str = "") -> None:
+    """SceneError for a mapping key defined twice under one parent, at any depth: the YAML
+    loader would silently keep the last (a body or joint defined twice would vanish)."""
+    if isinstance(node, yaml.SequenceNode):
+        for i, item in enumerate(node.value):
+            _refuse_duplicate_keys(item, source, f"{where}[{i}]")
+    if not isinstance(node, yaml.MappingNode):
+        return
+    first_line: dict[str, int] = {}
+    for key_node, value_node in node.value:
+        key = f"{where}.{key_node.value}" if where else str(key_node.value)
+        line = key_node.start_mark.line + 1
+        if key in first_line:
+            raise SceneError(
+                f"scene {source}: key '{key}' is defined twice (lines "
+                f"{first_line[key]} and {line}); YAML would keep only the last: remove or "
+                "rename one"
+            )
+        first_line[key] = line
+        _refuse_duplicate_keys(value_node, source, key)
 
 
 def _read_source(name_or_path: str) -> tuple[dict, str]:
@@ -181,8 +208,18 @@ def _read_source(name_or_path: str) -> tuple[dict, str]:
     path = Path(name_or_path)
     if path.suffix in (".yaml", ".yml") or path.exists():
         if not path.is_file():
-            raise SceneError(f"scene file '{path}' does not exist")
-        return _read_yaml(path.read_text(), f"'{path}'"), f"'{path}'"
+            what = "is a directory, not a YAML file" if path.is_dir() else "does not exist"
+            raise SceneError(f"scene file '{path}' {what}")
+        try:
+            text = path.read_text(encoding="utf-8")
+        except UnicodeDecodeError as exc:
+            raise SceneError(
+                f"scene file '{path}' is not UTF-8 text (byte {exc.object[exc.start]:#04x} at "
+                f"offset {exc.start}): a scene must be a YAML file saved as UTF-8"
+            ) from None
+        except OSError as exc:
+            raise SceneError(f"scene file '{path}' cannot be read: {exc.strerror}") from None
+        return _read_yaml(text, f"'{path}'"), f"'{path}'"
     if name_or_path not in builtin_names():
         raise SceneError(
             f"unknown scene '{name_or_path}': give a path to a YAML file or one of the "
@@ -292,6 +329,13 @@ def _check_value(value: Any, field: Field) -> bool:
     if field.kind == "list":
         return isinstance(value, list)
     return isinstance(value, dict)
+
+
+def check_option(option: str, value: Any, field: Field) -> None:
+    """Raise ValueError naming a command-line option whose value `field` does not accept, in
+    the words of a scene key's message (`sim` reports it with exit code 2)."""
+    if not _check_value(value, field):
+        raise ValueError(f"{option} = {value!r} is not accepted; expected {_describe(field)}")
 
 
 def _check_section(data: Any, spec: dict, where: str, source: str) -> None:

@@ -1,4 +1,4 @@
-"""sim.fidelity on synthetic runs with known answers, and on real runs of the six-bar."""
+"""sim.studies.fidelity on synthetic runs with known answers, and on real runs of the six-bar."""
 
 import json
 
@@ -6,10 +6,10 @@ import numpy as np
 import pytest
 import xarray as xr
 
-from sim import fidelity
 from sim.plots import tables
 from sim.run import simulate
 from sim.scene import load_scene
+from sim.studies import fidelity
 
 PERIOD = 0.4
 CLEARANCE = 5e-4
@@ -27,7 +27,7 @@ def synthetic_run(
     links: str = "rigid",
     rtol: float = 1e-6,
 ) -> xr.Dataset:
-    """A run dataset with the variables sim.fidelity reads: responses given as functions of
+    """A run dataset with the variables sim.studies.fidelity reads: responses given as functions of
     the crank phase 2πt/T, section eccentricities of joint A (``sections``: axis → values)
     and the peaks (slider acceleration, torque, contact force of A); its scene and solver
     attributes (link kind, rtol) as the work–precision table reads them."""

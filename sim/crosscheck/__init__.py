@@ -4,7 +4,7 @@ The same resolved scene, started from the same initial state, is built and integ
 Exudyn (an open-source flexible multibody code: Gerstmayr, Multibody Syst. Dyn. 60, 2024; install
 with ``pip install -e '.[crosscheck]'``) and compared with our run:
 
-- `sim.crosscheck.contact`: the clearance contact laws for Exudyn, written anew from MODEL.md;
+- `sim.crosscheck.contact`: the clearance contact laws for Exudyn, written anew from docs/model.md;
 - `sim.crosscheck.model`: the scene as an Exudyn model (needs exudyn);
 - `sim.crosscheck.recorder`: Exudyn's sensor values at our output times;
 - `sim.crosscheck.run`: `simulate_exudyn`, an output Dataset with our variable names, and

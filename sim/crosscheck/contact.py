@@ -1,6 +1,6 @@
-"""Clearance contact for the Exudyn model, written anew from MODEL.md on purpose.
+"""Clearance contact for the Exudyn model, written anew from docs/model.md on purpose.
 
-Exudyn has no clearance joint, so the cross-check applies the contact laws of MODEL.md through
+Exudyn has no clearance joint, so the cross-check applies the contact laws of docs/model.md through
 a force user function. They are implemented here a second time, in plain Python and from the
 equations rather than from `sim.model.clearance`, so that the cross-check also checks our
 compiled implementation of the laws. Parameters (radii, stiffnesses, restitution, friction)
@@ -14,7 +14,7 @@ the bodies it touches, in Exudyn's node order. A point on a body is
   NODE    the position (x, y) of a beam node whose coordinates start at `first`.
 A force f (N) at a point plus a global offset o (m) adds Q = (∂r/∂x)ᵀ f: f on (x, y) and,
 on a rigid body, the moment (A u + o) × f on θ. A beam node has no rotational coordinate, so
-the offset of a contact point on it carries no moment (MODEL.md: pins act on node positions).
+the offset of a contact point on it carries no moment (docs/model.md: pins act on node positions).
 
 Revolute clearance (bearing B on the first body, journal J on the second; Flores & Ambrósio,
 Comput. Struct. 82, 2004): e = r_J − r_B, n = e/|e|, t = k × n, δ = |e| − c, δ̇ = n·ė. In

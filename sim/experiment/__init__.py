@@ -11,8 +11,9 @@ Modules, one job each:
 - :mod:`~sim.experiment.synthesize`: a synthetic recording with its full metadata;
 - :mod:`~sim.experiment.alignment`: time-shift estimation and resampling of the simulation onto
   the recording's times;
-- :mod:`~sim.experiment.metrics`: error metrics and spectra, per crank revolution;
-- :mod:`~sim.experiment.cli`: the ``sim experiment`` subcommand.
+- :mod:`~sim.experiment.metrics`: error metrics and spectra, per crank revolution.
+
+The ``sim experiment`` subcommand is :mod:`sim.cli.experiment`.
 """
 
 from sim.experiment.alignment import (

@@ -1,7 +1,13 @@
 """The metadata file beside a recording (``<stem>.meta.yaml``): parsing and schema checks.
 
-Every key is known (a misspelt key is an error, not silently ignored), every value has a type,
-and errors point at the line of the offending key in the YAML file.
+Every key is known (a misspelt key is an error, not silently ignored), every key appears once,
+every value has a type, and errors point at the line of the offending key in the YAML file.
+
+The optional ``channel`` says which simulated signal the recording measures: the acceleration
+of a body's reference point (``point: centre``: a rigid body's centre, a beam's mid-span; the
+only point a run records) along a global axis (``x`` or ``y``). Without it the recording
+measures ``DEFAULT_CHANNEL``, the vertical acceleration of the body ``slider``, as every
+recording before the key existed does.
 """
 
 from collections.abc import Mapping
@@ -14,6 +20,9 @@ from sim.experiment.errors import RecordingError
 
 FORMAT_VERSION = 1
 DEFAULT_FILTER_ORDER = 4
+DEFAULT_CHANNEL = {"body": "slider", "point": "centre", "axis": "y"}
+CHANNEL_POINTS = ("centre",)
+CHANNEL_AXES = ("x", "y")
 
 # key -> (type, required). ``bool`` is a subclass of ``int`` in Python, so booleans are
 # rejected explicitly where a number is expected (see _has_type).
@@ -25,7 +34,13 @@ _TOP_LEVEL = {
     "units": (Mapping, True),
     "sensor": (Mapping, True),
     "trigger_angle_rad": (Real, False),
+    "channel": (Mapping, False),
     "synthesis": (Mapping, False),
+}
+_CHANNEL = {
+    "body": (str, True),
+    "point": (str, False),
+    "axis": (str, True),
 }
 _SENSOR = {
     "axis": (str, True),
@@ -49,24 +64,41 @@ def parse_metadata(text: str, source: str) -> tuple[dict[str, Any], KeyLines]:
     Returns the metadata mapping and the 1-based line of every key (by key path), used to
     point later consistency errors at the right line.
     """
+    metadata, lines = load_yaml(text, source)
+    if not isinstance(metadata, dict):
+        raise RecordingError(source, "metadata must be a YAML mapping of keys to values")
+    check_metadata(metadata, source, lines)
+    return metadata, lines
+
+
+def load_yaml(text: str, source: str) -> tuple[Any, KeyLines]:
+    """YAML text to Python data and the 1-based line of every mapping key (by key path);
+    RecordingError naming ``source`` and the line for invalid YAML or a key given twice."""
+    loader = yaml.SafeLoader(text)
     try:
-        node = yaml.compose(text, Loader=yaml.SafeLoader)
-        metadata = yaml.safe_load(text)
+        node = loader.get_single_node()
+        lines = _key_lines(node, source)
+        return (None if node is None else loader.construct_document(node)), lines
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)
         line = None if mark is None else mark.line + 1
         raise RecordingError(source, f"not valid YAML ({exc})", line) from exc
-    if not isinstance(metadata, dict):
-        raise RecordingError(source, "metadata must be a YAML mapping of keys to values")
-    lines = _key_lines(node)
-    check_metadata(metadata, source, lines)
-    return metadata, lines
+    finally:
+        loader.dispose()
+
+
+def measured_channel(metadata: Mapping[str, Any]) -> dict[str, str]:
+    """The simulated signal a recording measures: ``body``, ``point`` and ``axis`` of its
+    ``channel``, ``DEFAULT_CHANNEL`` for what the metadata leaves out."""
+    return DEFAULT_CHANNEL | dict(metadata.get("channel", {}))
 
 
 def check_metadata(metadata: Mapping[str, Any], source: str, lines: KeyLines) -> None:
     """Check keys, types and the values that do not depend on the data (raises RecordingError)."""
     _check_mapping(metadata, _TOP_LEVEL, (), source, lines)
     _check_mapping(metadata["sensor"], _SENSOR, ("sensor",), source, lines)
+    if "channel" in metadata:
+        _check_channel(metadata["channel"], source, lines)
     if metadata["format_version"] != FORMAT_VERSION:
         raise RecordingError(
             source,
@@ -99,6 +131,19 @@ def check_metadata(metadata: Mapping[str, Any], source: str, lines: KeyLines) ->
                 lines.get(("units", str(column))),
             )
     _check_synthesis(metadata, source, lines)
+
+
+def _check_channel(channel: Mapping[str, Any], source: str, lines: KeyLines) -> None:
+    """Keys and types of ``channel``, its point and axis among those a run records."""
+    _check_mapping(channel, _CHANNEL, ("channel",), source, lines)
+    for key, accepted in (("point", CHANNEL_POINTS), ("axis", CHANNEL_AXES)):
+        if key in channel and channel[key] not in accepted:
+            raise RecordingError(
+                source,
+                f"metadata key 'channel.{key}' = {channel[key]!r} is not accepted; a run "
+                f"records {', '.join(map(repr, accepted))} (channel: body, point, axis)",
+                lines.get(("channel", key)),
+            )
 
 
 def _check_synthesis(metadata: Mapping[str, Any], source: str, lines: KeyLines) -> None:
@@ -175,12 +220,21 @@ def _require_positive(value: float, key: tuple[str, ...], source: str, lines: Ke
         )
 
 
-def _key_lines(node: yaml.Node | None, prefix: tuple[str, ...] = ()) -> KeyLines:
-    """1-based line of every mapping key in a composed YAML document, by key path."""
+def _key_lines(node: yaml.Node | None, source: str, prefix: tuple[str, ...] = ()) -> KeyLines:
+    """1-based line of every mapping key in a composed YAML document, by key path; a key
+    given twice is an error (YAML would silently keep the last)."""
     lines: KeyLines = {}
     if isinstance(node, yaml.MappingNode):
         for key_node, value_node in node.value:
             path = (*prefix, str(key_node.value))
-            lines[path] = key_node.start_mark.line + 1
-            lines.update(_key_lines(value_node, path))
+            line = key_node.start_mark.line + 1
+            if path in lines:
+                raise RecordingError(
+                    source,
+                    f"key '{'.'.join(path)}' is given twice (lines {lines[path]} and {line}); "
+                    "YAML would keep only the last: remove or rename one",
+                    line,
+                )
+            lines[path] = line
+            lines.update(_key_lines(value_node, source, path))
     return lines

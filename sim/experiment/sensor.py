@@ -17,12 +17,14 @@ import math
 import os
 from collections.abc import Mapping
 from dataclasses import dataclass
+from pathlib import Path
 from typing import Any
 
 import numpy as np
-import yaml
 
-from sim.experiment.metadata import DEFAULT_FILTER_ORDER
+from sim.experiment.errors import RecordingError
+from sim.experiment.metadata import DEFAULT_FILTER_ORDER, load_yaml
+from sim.experiment.recording import read_text
 from sim.experiment.sampling import lowpass, resample, uniform_rate
 
 
@@ -66,14 +68,22 @@ class SensorSettings:
 
     @classmethod
     def from_mapping(cls, mapping: Mapping[str, Any]) -> "SensorSettings":
-        """Settings from a mapping of field names to values; unknown names are an error."""
-        known = {f.name for f in dataclasses.fields(cls)}
-        unknown = sorted(set(mapping) - known)
+        """Settings from a mapping of field names to values; unknown names and values of the
+        wrong type (text for a number, a fraction for a whole number) are errors."""
+        kinds = {f.name: f.type for f in dataclasses.fields(cls)}
+        unknown = sorted(set(mapping) - set(kinds))
         if unknown:
             raise ValueError(
-                f"unknown sensor setting(s) {', '.join(unknown)} "
-                f"(known: {', '.join(sorted(known))})"
+                f"unknown sensor setting(s) {', '.join(map(str, unknown))} "
+                f"(known: {', '.join(sorted(kinds))})"
             )
+        for name, value in mapping.items():
+            if not _has_kind(value, kinds[name]):
+                expected = {float: "a finite number", int: "a whole number", str: "text"}
+                raise ValueError(
+                    f"sensor setting {name} = {value!r} is not accepted; expected "
+                    + expected[kinds[name]]
+                )
         return cls(**mapping)
 
     def to_dict(self) -> dict[str, Any]:
@@ -81,13 +91,26 @@ class SensorSettings:
         return dataclasses.asdict(self)
 
 
+def _has_kind(value: Any, kind: type) -> bool:
+    """Whether a settings value is of a field's type (bool is no number; an int is a float)."""
+    if isinstance(value, bool):
+        return False
+    if kind is float:
+        return isinstance(value, int | float) and math.isfinite(value)
+    return isinstance(value, kind)
+
+
 def load_sensor_settings(path: str | os.PathLike[str]) -> SensorSettings:
-    """Sensor settings from a YAML mapping; settings it leaves out keep their defaults."""
-    with open(path, encoding="utf-8") as stream:
-        mapping = yaml.safe_load(stream) or {}
-    if not isinstance(mapping, dict):
-        raise ValueError(f"{path}: sensor settings must be a YAML mapping")
-    return SensorSettings.from_mapping(mapping)
+    """Sensor settings from a YAML mapping; settings it leaves out keep their defaults.
+    Raises RecordingError (a ValueError) naming the file for anything it cannot use."""
+    source = Path(path)
+    mapping, _ = load_yaml(read_text(source), str(source))
+    if not isinstance(mapping, dict | None):
+        raise RecordingError(str(source), "sensor settings must be a YAML mapping")
+    try:
+        return SensorSettings.from_mapping(mapping or {})
+    except ValueError as exc:
+        raise RecordingError(str(source), str(exc)) from None
 
 
 @dataclass(frozen=True)

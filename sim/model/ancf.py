@@ -12,7 +12,7 @@ material point is r(x) = S(ξ) q_e with the cubic Hermite shape functions
 
     S1 = 1 − 3ξ² + 2ξ³,   S2 = l(ξ − 2ξ² + ξ³),   S3 = 3ξ² − 2ξ³,   S4 = l(ξ³ − ξ²),
 
-each multiplying the 2×2 identity (Shabana 1997; MODEL.md "Flexible links"); primes are
+each multiplying the 2×2 identity (Shabana 1997; docs/model.md "Flexible links"); primes are
 derivatives with respect to x.
 
 Strain energy (Berzeri & Shabana 2000, their simple model of the elastic forces):

@@ -60,7 +60,7 @@ class Layout:
 
 
 def body_mass_properties(body: dict, material: dict) -> tuple[float, float]:
-    """Mass (kg) and centroidal inertia (kg m²) of a rigid body; MODEL.md:
+    """Mass (kg) and centroidal inertia (kg m²) of a rigid body; docs/model.md:
     bars m = ρ A L, J = m L²/12; blocks m = ρ L W D, J = m (L² + W²)/12,
     unless the scene gives `mass` / `inertia`."""
     rho = material["density"]

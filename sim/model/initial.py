@@ -5,7 +5,7 @@ minimum-norm correction Δq = −Φ_q⁺ Φ so that free coordinates stay near t
 hints (Nikravesh 1988, ch. 4; Haug 1989, ch. 3). Velocities: the minimum-norm
 solution of Φ_q q̇ = ν; accelerations likewise from Φ_q q̈ = γ. Solved on the
 all-ideal, all-rigid mechanism, so every clearance joint starts centred (zero
-eccentricity), as MODEL.md says; beams are then laid along their rigid pose and,
+eccentricity), as docs/model.md says; beams are then laid along their rigid pose and,
 by default, deformed to carry its loads (`quasi_static_beams`).
 """
 
@@ -13,6 +13,7 @@ import math
 from collections.abc import Callable
 
 import numpy as np
+from scipy.optimize import least_squares
 
 from sim.model import ancf
 from sim.model.assembly import AssemblyError, Layout, build_system
@@ -49,8 +50,15 @@ def minimum_norm_newton(
     return x, bool(np.max(np.abs(linearize(x)[0]), initial=0.0) < tolerance)
 
 
+# At the least-squares closest approach a joint whose gap is below this share of the largest
+# closes: the tight tolerances below leave closed joints near 1e-11 m against gaps of mm.
+_OPEN_SHARE = 1e-3
+# A closest approach whose largest gap is below this (m) is an assembly Newton missed.
+_CLOSED_GAP = 1e-9
+
+
 def solve_positions(system: System, layout: Layout, q0: np.ndarray, t: float = 0.0) -> np.ndarray:
-    """Close every loop from the guess q0; AssemblyError names the worst joint."""
+    """Close every loop from the guess q0; AssemblyError names the loop that cannot close."""
     zero = np.zeros_like(q0)
 
     def linearize(q):
@@ -60,14 +68,35 @@ def solve_positions(system: System, layout: Layout, q0: np.ndarray, t: float = 0
     q, converged = minimum_norm_newton(linearize, q0, 1e-13, 50)
     if converged:
         return q
-    phi, _ = linearize(q)
-    worst = int(np.argmax(np.abs(phi)))
-    joint = layout.joint_of_row(worst)
-    raise AssemblyError(
-        f"the linkage cannot close: joint '{joint}' misses by {abs(phi[worst]):.3g} m "
-        f"(largest residual after 50 Newton iterations from the scene's hints). The loop "
-        f"through '{joint}' is too short or too long for its links, or the hints point to "
-        "no assembly branch: check the lengths, ground points and bodies.<name>.hint."
+    raise AssemblyError(_open_loop(linearize, layout, q0))
+
+
+def _open_loop(linearize: Callable, layout: Layout, q0: np.ndarray) -> str:
+    """Why the loops do not close, for the message. Newton's last iterate is arbitrary when
+    no assembly exists, so the diagnosis is the least-squares closest approach from q0: the
+    joints still open there form the loop that cannot close, each with its gap (m; angles
+    of welds and guides in rad). The drive's row, an angle, is left out of the account."""
+    closest = least_squares(
+        lambda q: linearize(q)[0], q0, jac=lambda q: linearize(q)[1], xtol=1e-15, ftol=1e-15
+    )
+    gaps = {
+        name: float(np.linalg.norm(closest.fun[first : first + count]))
+        for name, first, count in layout.constraint_rows
+        if name != "drive"
+    }
+    worst = max(gaps, key=gaps.get)
+    if gaps[worst] < _CLOSED_GAP:
+        return (
+            "the linkage did not close in 50 Newton iterations from the scene's hints, though "
+            "an assembly exists near them: move bodies.<name>.hint closer to the assembled pose"
+        )
+    loop = [name for name, gap in gaps.items() if gap > _OPEN_SHARE * gaps[worst]]
+    return (
+        f"the linkage cannot close: the loop through joints {', '.join(loop)} cannot close; "
+        f"closest approach (least squares from the scene's hints): joint '{worst}' misses by "
+        f"{gaps[worst]:.3g} m, the loop's gaps sum to {sum(gaps[n] for n in loop):.3g} m. A "
+        "link of that loop is too short or too long for the others, or the hints point to no "
+        "assembly branch: check the lengths, ground points and bodies.<name>.hint."
     )
 
 
@@ -162,7 +191,7 @@ def quasi_static_beams(
     multipliers λ with
         F(q) + Φ_q(q)ᵀ λ = Q_g − M q̈_rigid,   Φ(q, 0) = 0,
     the elastic forces F balancing gravity, the inertia of the prescribed rigid
-    motion and the joint reactions (MODEL.md, "Beams need care"); Newton with the
+    motion and the joint reactions (docs/model.md, "Beams need care"); Newton with the
     matrix [K, Φ_qᵀ; Φ_q, 0], K = ∂F/∂q. Velocities are the rigid field made
     consistent with the deformed pose (minimum-norm correction of Φ_q q̇ = ν).
     The flexible model then starts with the rigid model's accelerations, to
@@ -195,12 +224,46 @@ def quasi_static_beams(
     return q, qd
 
 
+# A singular value of Φ_q M^(-1/2) at or below this share of the largest counts as zero: the
+# integrator refuses a Schur-complement (Φ_q M⁻¹ Φ_qᵀ) pivot below 1e-13 of its diagonal
+# (sim/solve/linalg.py), and the Schur complement's eigenvalues are those singular values
+# squared, so this is about the integrator's own limit.
+_RANK_SHARE = math.sqrt(1e-13)
+
+
+def check_independent(system: System, layout: Layout, q: np.ndarray) -> None:
+    """AssemblyError naming the joints whose constraint rows depend on each other at q (t = 0):
+    the rows that carry weight in the left null space of the mass-scaled Φ_q, which the
+    integrator could not invert."""
+    if system.m == 0:
+        return
+    _, jac, _ = constraint_values(system, q, np.zeros_like(q), 0.0)
+    # Φ_q L⁻ᵀ with M = L Lᵀ: its Gram matrix is the integrator's Φ_q M⁻¹ Φ_qᵀ.
+    scaled = np.linalg.solve(np.linalg.cholesky(system.mass), jac.T).T
+    left, singular, _ = np.linalg.svd(scaled)
+    rank = int(np.sum(singular > _RANK_SHARE * singular[0]))
+    weight = np.linalg.norm(left[:, rank:], axis=1)
+    owners = dict.fromkeys(layout.joint_of_row(r) for r in np.flatnonzero(weight > 1e-6))
+    if not owners:
+        return
+    joints = [f"'{o}'" for o in owners if o != "drive"]
+    named = ", ".join(joints) + (" and the drive" if "drive" in owners else "")
+    raise AssemblyError(
+        f"the constraints are redundant at t = 0: the rows of joints {named} depend on each "
+        "other (they fix the same motion more than once, or the linkage starts in a locked, "
+        f"singular position). Remove one of those joints (e.g. {joints[-1]}, defined last) or "
+        "give it a clearance (joints.<name>.clearance > 0); if the position is locked, change "
+        "drive.initial_angle_deg or the bodies' hints."
+    )
+
+
 def initial_state(scene: dict, system: System, layout: Layout) -> tuple[np.ndarray, np.ndarray]:
     """q and q̇ at t = 0 for `system`: the rigid assembly with every clearance
     joint centred; beams pre-deformed to the quasi-static solution
     (`simulation.beam_start: quasi-static`) or straight along their rigid pose
-    (`straight`), moving with it."""
+    (`straight`), moving with it. AssemblyError when the constraints are redundant."""
     q, qd, qdd = _rigid_motion(scene, layout)
+    check_independent(system, layout, q)
     if any(layout.is_beam.values()) and scene["simulation"]["beam_start"] == "quasi-static":
         q, qd = quasi_static_beams(scene, q, qd, qdd)
     return q, qd

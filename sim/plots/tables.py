@@ -8,8 +8,8 @@ import xarray as xr
 from matplotlib.figure import Figure
 from matplotlib.ticker import FuncFormatter, NullFormatter
 
-from sim import fidelity
 from sim.plots import style
+from sim.studies import fidelity
 
 
 def peaks_table(cases: list[str], runs: list[xr.Dataset], ideals: list[xr.Dataset]) -> pd.DataFrame:
@@ -85,7 +85,7 @@ def work_precision_table(
     long_reference: str | None = None,
     transient: int = 0,
 ) -> pd.DataFrame:
-    """Work against precision, one row per case (sim.fidelity for the measures).
+    """Work against precision, one row per case (sim.studies.fidelity for the measures).
 
     Every case: its setting and cost (integrator wall time in s, real-time factor).
     Short horizon, for the cases sampled on the ``reference`` case's grid: the RMS and maximum

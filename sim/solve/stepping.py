@@ -13,7 +13,9 @@ the rest, identically for the explicit and the implicit method:
   crossing, where the flag flips and the onset rate δ̇⁻ is captured (the memory
   the Lankarani–Nikravesh law needs);
 - output samples and Poincaré sections at exact times from the continuous
-  extension; peaks over every accepted step's end;
+  extension; peaks over every accepted step's end, for the whole run and for
+  each revolution (the rows of `rev_peaks`, one per Poincaré section), and the
+  contact events of each revolution (`rev_events`);
 - a penetration or constraint drift beyond a sane bound stops the run with the
   time and the joint.
 
@@ -179,11 +181,13 @@ def _flip(sys, mem, g: int, y: np.ndarray) -> None:
 
 
 @kernel
-def _flip_and_refresh(sys, work, mem, g: int, t: float, y: np.ndarray, stats) -> int:
+def _flip_and_refresh(sys, work, mem, g: int, t: float, y: np.ndarray, stats, rev_events) -> int:
     """Apply the event of gap g at (t, y) and re-evaluate the derivative at the
-    step's start, which the changed contact state invalidates."""
+    step's start, which the changed contact state invalidates. The event is booked to
+    the revolution after the last recorded section (sections at t are recorded first)."""
     _flip(sys, mem, g, y)
     stats[S_EVENTS] += 1
+    rev_events[min(stats[S_SEC], rev_events.shape[0] - 1)] += 1
     stats[S_NFEV] += 1
     return rhs(sys, work, mem, t, y, work.stages[0])
 
@@ -205,6 +209,18 @@ def _update_peaks(sys, work, peaks: np.ndarray) -> None:
         v = work.jout[j, OUT_NORMAL_FORCE]
         if v > peaks[2 * nb + 1 + j]:
             peaks[2 * nb + 1 + j] = v
+
+
+@kernel
+def _revolution_row(t_step_end: float, sec_t, stats, rows: int) -> int:
+    """Row of `rev_peaks` for an accepted step that ends at t_step_end, called before the
+    step's sections are recorded: row r holds revolution r, the steps ending in
+    (sec_t[r - 1], sec_t[r]]; the last row (r = sec_t.size) what follows the last section.
+    A DOPRI5 step that straddles a section is booked to the revolution it ends in."""
+    r = stats[S_SEC]
+    if r < sec_t.shape[0] and sec_t[r] < t_step_end - 1e-12 * max(1.0, abs(t_step_end)):
+        r += 1
+    return min(r, rows - 1)
 
 
 @kernel
@@ -312,12 +328,16 @@ def integrate(
     sec_t: np.ndarray,
     sec_rows: np.ndarray,
     peaks: np.ndarray,
+    rev_peaks: np.ndarray,
+    rev_events: np.ndarray,
     pen_bound: np.ndarray,
     stats: np.ndarray,
     diag: np.ndarray,
 ) -> int:
     """Advance y from st[ST_T] to t_end. Returns OK or a failure status, with the
-    time in diag[D_TIME] and the responsible joint (if any) in stats[S_CULPRIT]."""
+    time in diag[D_TIME] and the responsible joint (if any) in stats[S_CULPRIT].
+    rev_peaks (sec_t.size + 1, peaks.size) and rev_events (sec_t.size + 1) take the same
+    peaks and the contact events per revolution (`_revolution_row`)."""
     ny = 2 * sys.n + 2
     k = work.stages
     method = int(opts[OPT_METHOD])
@@ -377,7 +397,7 @@ def integrate(
                     # Already across at the start of the step (a previous event
                     # ended a hair's breadth on the other side): flip now.
                     flips_at_t += 1
-                    s = _flip_and_refresh(sys, work, mem, g, t, y, stats)
+                    s = _flip_and_refresh(sys, work, mem, g, t, y, stats, rev_events)
                     if s != OK:
                         diag[D_TIME] = t
                         return s
@@ -387,6 +407,8 @@ def integrate(
                 continue
         # The step is accepted; work holds the evaluation at its end.
         _update_peaks(sys, work, peaks)
+        row = _revolution_row(t + hs, sec_t, stats, rev_peaks.shape[0])
+        _update_peaks(sys, work, rev_peaks[row])
         s = _check_state(sys, work, opts, pen_bound, stats)
         if s != OK:
             diag[D_TIME] = t + hs
@@ -409,7 +431,7 @@ def integrate(
                 diag[D_TIME] = t
                 return NONFINITE
         if pending >= 0:
-            s = _flip_and_refresh(sys, work, mem, pending, t, y, stats)
+            s = _flip_and_refresh(sys, work, mem, pending, t, y, stats, rev_events)
             if s != OK:
                 diag[D_TIME] = t
                 return s

@@ -1,4 +1,5 @@
-"""Shared reference systems: the Lorenz flow, and synthetic run datasets (the run contract)."""
+"""Shared reference systems: the Lorenz, Rössler and forced Duffing flows, and synthetic run
+datasets (the run contract)."""
 
 import numba
 import numpy as np
@@ -39,15 +40,80 @@ def lorenz_advance(y: np.ndarray, t: float, dt: float) -> np.ndarray:
     return _lorenz_rk4(y, round(dt / LORENZ_STEP))
 
 
+@numba.njit(cache=True)
+def _flow(system: int, t: float, y: np.ndarray) -> np.ndarray:
+    if system == 0:  # Lorenz
+        return _lorenz(y)
+    if system == 1:  # Rössler
+        return np.array([-y[1] - y[2], y[0] + 0.2 * y[1], 0.2 + y[2] * (y[0] - 5.7)])
+    # x'' + 0.05 x' + x^3 = 7.5 cos t: the forced Duffing oscillator of Ueda's chaotic regime
+    return np.array([y[1], -0.05 * y[1] - y[0] ** 3 + 7.5 * np.cos(t)])
+
+
+@numba.njit(cache=True)
+def _flow_x(system: int, y0: np.ndarray, h: float, sub: int, n_skip: int, n: int) -> np.ndarray:
+    """x of the flow sampled every sub · h for n samples after n_skip samples (RK4 step h)."""
+    y, t = y0.copy(), 0.0
+    x = np.empty(n)
+    for i in range(n_skip + n):
+        if i >= n_skip:
+            x[i - n_skip] = y[0]
+        for _ in range(sub):
+            k1 = _flow(system, t, y)
+            k2 = _flow(system, t + 0.5 * h, y + 0.5 * h * k1)
+            k3 = _flow(system, t + 0.5 * h, y + 0.5 * h * k2)
+            k4 = _flow(system, t + h, y + h * k3)
+            y = y + h / 6.0 * (k1 + 2.0 * k2 + 2.0 * k3 + k4)
+            t += h
+    return x
+
+
+#: Rössler (1976) with a = b = 0.2, c = 5.7: largest exponent 0.0714 (Sprott 2003, appendix A)
+ROSSLER_EXPONENT = 0.0714
+ROSSLER_DT = 0.1
+#: the forced Duffing oscillator x'' + 0.05 x' + x^3 = 7.5 cos t (Ueda): largest exponent
+#: 0.1034 per unit of t (Sprott 2003, appendix A, "Ueda oscillator")
+DUFFING_EXPONENT = 0.1034
+DUFFING_DT = 2 * np.pi / 40
+LORENZ_DT = 0.01
+#: independent stretches per system in the ``stretches`` fixture: more of Rössler, whose
+#: estimates scatter most (their cost is small: the series are short)
+N_STRETCHES = {"lorenz": 5, "rossler": 9, "duffing": 5}
+#: samples dropped before every stretch so it lies on the attractor: 50 Lorenz time units,
+#: 500 of Rössler (~80 turns), 125 forcing periods of Duffing
+TRANSIENT_SAMPLES = 5000
+#: system: (index in _flow, RK4 step, RK4 steps per sample, samples per stretch)
+_SYSTEMS = {
+    "lorenz": (0, LORENZ_STEP, 2, 10_000),
+    "rossler": (1, ROSSLER_DT / 5, 5, 5_000),
+    "duffing": (2, DUFFING_DT / 10, 10, 12_000),
+}
+
+
 @pytest.fixture(scope="session")
-def lorenz_x() -> np.ndarray:
-    """x(t) of the Lorenz flow sampled every 0.01 for 100 time units, after a transient of 50."""
-    y = lorenz_advance(np.array([1.0, 1.0, 1.0]), 0.0, 50.0)
-    samples = np.empty(10_000)
-    for k in range(len(samples)):
-        samples[k] = y[0]
-        y = lorenz_advance(y, 0.0, 0.01)
-    return samples
+def stretches() -> dict[str, list[np.ndarray]]:
+    """``N_STRETCHES`` independent stretches of x(t) of each system ("lorenz", "rossler",
+    "duffing"), sampled every ``LORENZ_DT``, ``ROSSLER_DT`` and ``DUFFING_DT``: 100 Lorenz time
+    units, 500 Rössler time units (~90 turns) and 300 forcing periods.
+
+    Every stretch starts from its own random initial condition (fixed seed) and drops
+    ``TRANSIENT_SAMPLES`` first, so the stretches are unrelated pieces of the attractor.
+    Fixed-step compiled RK4 (Lorenz at the step ``lorenz_advance`` uses, 5 and 10 steps per
+    sample for Rössler and Duffing): its error changes which orbit is followed, as any
+    integrator's does on a chaotic attractor, not the attractor's statistics; all stretches
+    take about a second.
+    """
+    rng = np.random.default_rng(20_241_123)
+    series = {}
+    for name, (system, h, sub, n) in _SYSTEMS.items():
+        starts = [1.0, 1.0, 1.0] + 0.5 * rng.standard_normal((N_STRETCHES[name], 3))
+        # Rössler's z stays positive on the attractor; Duffing has two state variables
+        starts[:, 2] = np.abs(starts[:, 2])
+        series[name] = [
+            _flow_x(system, start[: 2 if system == 2 else 3], h, sub, TRANSIENT_SAMPLES, n)
+            for start in starts
+        ]
+    return series
 
 
 def run_dataset(

@@ -2,11 +2,11 @@
 
 import numpy as np
 
-from sim.analysis.model_lyapunov import linkage_lyapunov, linkage_propagator
 from sim.model.assembly import crank_period
 from sim.model.clearance import eccentricity
 from sim.run import simulate
 from sim.scene import load_scene
+from sim.studies.model_lyapunov import linkage_lyapunov, linkage_propagator
 
 FLAGSHIP = ["joints.A.clearance=0.5e-3", "joints.B.clearance=0.5e-3"]
 

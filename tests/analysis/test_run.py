@@ -7,8 +7,8 @@ import pytest
 import xarray as xr
 
 from sim.analysis.bifurcation import combine_sweep
-from sim.analysis.cli import register
 from sim.analysis.run import analyze_run
+from sim.cli.analyze import register
 
 TRANSIENT = 20
 

@@ -10,7 +10,7 @@ SHORT = ["--set", "simulation.revolutions=2", "--set", "simulation.output_per_re
 
 
 def slider_at_crank_angle_zero() -> np.ndarray:
-    """Slider centre E (m) of MODEL.md's six-bar at crank angle 0, from its geometry alone:
+    """Slider centre E (m) of docs/model.md's six-bar at crank angle 0, from its geometry alone:
     D is the upper intersection of the circles |D − A| = L2 and |D − C| = L3, and E lies on
     the guide x = 0.15 m below D with |E − D| = L4."""
     a, c = np.array([0.10, 0.0]), np.array([0.35, 0.10])

@@ -1,4 +1,4 @@
-"""The extremes of STUDIES.md at short duration: every case must finish with finite results,
+"""The extremes of docs/studies.md at short duration: every case must finish with finite results,
 bounded constraint violation and a closing energy audit (the workflow's `extremes` study runs
 them at full length). Clearance 0 and the approach to the ideal joint of A and B alone are in
 test_clearance_limits.py; here clearance 0 is checked on every joint with flexible links.
@@ -91,7 +91,7 @@ def test_resting_contact_carries_the_load_at_the_hertz_penetration(run):
     radial_rate = np.abs(np.sum(e * rate, axis=1) / np.linalg.norm(e, axis=1))
     v_min = scene["contact"]["min_impact_speed"]
     assert radial_rate.max() < v_min
-    # K = (4/3) E* sqrt(R_B R_J / c) of MODEL.md, E* = E / (2 (1 − ν²)) for steel on steel
+    # K = (4/3) E* sqrt(R_B R_J / c) of docs/model.md, E* = E / (2 (1 − ν²)) for steel on steel
     c, radius = scene["joints"]["A"]["clearance"], scene["joints"]["A"]["bearing_radius"]
     steel = scene["materials"]["steel"]
     e_star = steel["youngs_modulus"] / (2 * (1 - steel["poisson"] ** 2))

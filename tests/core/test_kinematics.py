@@ -1,6 +1,6 @@
 """Rigid ideal linkages against closed-form kinematics and the power balance.
 
-The references are computed here from MODEL.md's geometry alone: circle
+The references are computed here from docs/model.md's geometry alone: circle
 intersections for positions, the differentiated loop equations (2×2 linear
 systems) for velocities and accelerations, and τω = dT/dt + dV/dt for the
 driving torque of rigid links with ideal joints.

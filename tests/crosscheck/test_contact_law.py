@@ -1,4 +1,4 @@
-"""The cross-check's contact laws (sim.crosscheck.contact, written anew from MODEL.md) against
+"""The cross-check's contact laws (sim.crosscheck.contact, written anew from docs/model.md) against
 our compiled ones (sim.model.clearance) at random states, and against closed forms. Two
 implementations of the same law must give the same generalized forces; neither needs Exudyn."""
 

@@ -23,7 +23,16 @@ def _snakemake(*args: str, cwd: Path = ROOT, timeout: float = 600) -> subprocess
 def test_dry_run_full_config():
     done = _snakemake("-n", "--quiet", "rules")
     assert done.returncode == 0, done.stderr
-    for rule in ("run", "run_ideal", "run_tolerant", "analyze", "combine_sweep", "landing"):
+    for rule in (
+        "run",
+        "run_member",
+        "run_ideal",
+        "run_tolerant",
+        "analyze",
+        "combine_sweep",
+        "revolution_table",
+        "landing",
+    ):
         assert rule in done.stdout + done.stderr
 
 
@@ -61,6 +70,26 @@ def _check_file(path: Path) -> None:
         json.loads(path.read_text())
 
 
+def _check_ensembles(work: Path) -> None:
+    """Every member of the quick configuration's peaks studies is recorded with its index,
+    seed and perturbation, and the claims on peaks are tests with intervals."""
+    import pandas as pd
+    import xarray as xr
+
+    table = pd.read_csv(work / "results/clearance-size/tables/revolutions.csv")
+    assert sorted(table.member.unique()) == [0, 1, 2]
+    assert (table.groupby(["case", "member"]).size() == 25).all()
+    with xr.open_dataset(work / "results/clearance-size/run/clearance-0.1mm/member-1.nc") as run:
+        assert run.attrs["ensemble_member"] == 1
+        assert run.attrs["ensemble_seed"] == 20261124
+        assert 0 < abs(run.attrs["perturbation_shift_deg"]) < 1e-7
+        assert "revolution_peak_acceleration" in run
+    claims = pd.read_csv(work / "results/report/claims.csv").set_index("claim")
+    peaks = claims.loc["Larger clearance gives larger acceleration and torque peaks."]
+    assert peaks.verdict in ("supported", "not supported", "undecided")
+    assert "95% intervals" in peaks.intervals
+
+
 @pytest.mark.slow
 def test_quick_workflow_end_to_end(tmp_path):
     """The quick configuration in a copy of the workflow, then the report."""
@@ -72,7 +101,7 @@ def test_quick_workflow_end_to_end(tmp_path):
             shutil.copytree(source, work / item)
         else:
             shutil.copy(source, work / item)
-    done = _snakemake("-j2", "--configfile", "config/quick.yaml", cwd=work, timeout=1800)
+    done = _snakemake("-j2", "--configfile", "config/quick.yaml", cwd=work, timeout=3600)
     assert done.returncode == 0, done.stderr[-4000:]
     targets = _snakemake(
         "-n", "--configfile", "config/quick.yaml", "--forceall", "--quiet", "all", cwd=work
@@ -91,6 +120,10 @@ def test_quick_workflow_end_to_end(tmp_path):
         "results/flagship/tables/lyapunov_clearance-0.5mm.csv",
         "results/clearance-size/tables/peaks.csv",
         "results/speed/tables/peaks.csv",
+        "results/clearance-size/run/clearance-0.4mm/member-2.nc",
+        "results/clearance-size/tables/revolutions.csv",
+        "results/clearance-size/tables/revolution_statistics.csv",
+        "results/speed/tables/revolution_statistics.html",
         "results/bifurcation-clearance/figures/bifurcation.png",
         "results/bifurcation-speed/figures/bifurcation.png",
         "results/fidelity/figures/work_precision.png",
@@ -99,6 +132,7 @@ def test_quick_workflow_end_to_end(tmp_path):
         "results/report/claims.csv",
     ):
         _check_file(work / name)
+    _check_ensembles(work)
     report = _snakemake(
         "--configfile", "config/quick.yaml", "--report", "report.html", cwd=work, timeout=300
     )

@@ -24,6 +24,7 @@ IDEAL_IGNORED = (".clearance", ".kind", ".elements", "solver.method", "solver.rh
 wildcard_constraints:
     study="[A-Za-z0-9_-]+",
     case="[A-Za-z0-9_.+-]+",
+    member="[1-9][0-9]*",
 
 
 def study(name):
@@ -35,6 +36,12 @@ def study(name):
         settings.update(entry.get("quick", {}))
     for key in DURATION_KEYS:
         settings.setdefault(key, DEFAULTS[key])
+    # the study's ensemble keys on top of the defaults' (quick: on top of the study's)
+    settings["ensemble"] = {
+        **DEFAULTS.get("ensemble", {}),
+        **entry.get("ensemble", {}),
+        **(entry.get("quick", {}).get("ensemble", {}) if QUICK else {}),
+    }
     return settings
 
 
@@ -139,6 +146,49 @@ def ideal_file(name, case):
 
 def analysis_file(name, case):
     return f"results/{name}/analysis/{case}.nc"
+
+
+def member_file(name, case, member):
+    """Run of ensemble member `member` of a case: member 0 is the nominal run."""
+    if int(member) == 0:
+        return run_file(name, case)
+    return f"results/{name}/run/{case}/member-{member}.nc"
+
+
+def ensemble_size(name):
+    """Members per case: the study's ensemble if it has statistics on peaks, else 1."""
+    return int(study(name)["ensemble"].get("members", 1)) if has(name, "peaks") else 1
+
+
+def members_of_study(wildcards):
+    """Every member's run of every case of a study, case by case."""
+    name = wildcards.study
+    return [
+        member_file(name, case, k)
+        for case in case_names(name)
+        for k in range(ensemble_size(name))
+    ]
+
+
+def member_draw(wildcards):
+    """Arguments of sim.ensemble.member for one member: index, base seed and, if the config
+    states it, the perturbation's size (deg; else sim.ensemble's default)."""
+    ensemble = study(wildcards.study)["ensemble"]
+    draw = {"index": int(wildcards.member), "base_seed": int(ensemble.get("seed", 0))}
+    if "size_deg" in ensemble:
+        draw["size_deg"] = float(ensemble["size_deg"])
+    return draw
+
+
+def run_overrides(wildcards):
+    """A case's scene overrides as `key=value` texts (as `sim run --set` takes them)."""
+    overrides = case_overrides(wildcards.study, wildcards.case)
+    return [f"{key}={value}" for key, value in overrides.items()]
+
+
+def bootstrap_settings(wildcards=None):
+    """The bootstrap of the statistics and verdicts (config `statistics`)."""
+    return dict(config.get("statistics", {}))
 
 
 def runs_of_study(wildcards):
@@ -289,6 +339,8 @@ def study_targets(name):
             out += [f"{base}/tables/lyapunov_{case}.csv", f"{base}/tables/lyapunov_{case}.html"]
     if has(name, "peaks"):
         out += [f"{base}/tables/peaks.csv", f"{base}/tables/peaks.html"]
+        out += [f"{base}/tables/revolutions.csv", f"{base}/tables/revolution_statistics.csv"]
+        out += [f"{base}/tables/revolution_statistics.html"]
     if has(name, "bifurcation"):
         out += [f"{base}/bifurcation.nc", f"{base}/figures/bifurcation.png"]
         out += [f"{base}/tables/bifurcation_lyapunov.csv", f"{base}/tables/bifurcation_lyapunov.html"]
@@ -317,7 +369,7 @@ def all_targets():
 
 
 def landing_inputs(wildcards):
-    """Named inputs of the landing page: the results each claim of STUDIES.md is judged on,
+    """Named inputs of the landing page: the results each claim of docs/studies.md is judged on,
     for the studies of config `report` that are enabled."""
     roles = config.get("report", {})
     out = {}
@@ -338,6 +390,7 @@ def landing_inputs(wildcards):
         name = enabled(role)
         if name and has(name, "peaks"):
             out[f"{role}_peaks"] = f"results/{name}/tables/peaks.csv"
+            out[f"{role}_revolutions"] = f"results/{name}/tables/revolutions.csv"
     for role in ("bifurcation_clearance", "bifurcation_speed"):
         name = enabled(role)
         if name and has(name, "bifurcation"):

@@ -9,6 +9,7 @@ localrules:
     poincare,
     lyapunov_table,
     peaks_table,
+    revolution_table,
     bifurcation_figure,
     bifurcation_table,
     work_precision,
@@ -137,6 +138,32 @@ rule peaks_table:
         "results/benchmarks/{study}/tables/peaks.tsv"
     script:
         "../scripts/figures.py"
+
+
+rule revolution_table:
+    input:
+        runs=members_of_study,
+    output:
+        revolutions="results/{study}/tables/revolutions.csv",
+        csv="results/{study}/tables/revolution_statistics.csv",
+        html=report(
+            "results/{study}/tables/revolution_statistics.html",
+            caption="../report/revolution_statistics.rst",
+            category="{study}",
+            subcategory="tables",
+        ),
+    params:
+        cases=study_cases,
+        transient=transient,
+        statistics=bootstrap_settings,
+    conda:
+        "../envs/sim.yaml"
+    log:
+        "logs/{study}/tables/revolutions.log",
+    benchmark:
+        "results/benchmarks/{study}/tables/revolutions.tsv"
+    script:
+        "../scripts/revolutions.py"
 
 
 rule bifurcation_table:

@@ -1,4 +1,4 @@
-# Stage 6: the report's landing page. It judges each claim of STUDIES.md on our results and
+# Stage 6: the report's landing page. It judges each claim of docs/studies.md on our results and
 # states the assumed geometry and values and which accelerometer data was used. It is the
 # report's front page (Snakefile `report:`); `snakemake --report report.html` renders it.
 
@@ -23,6 +23,8 @@ rule landing:
         studies=STUDIES,
         model=config["model"],
         recording=landing_recording,
+        statistics=bootstrap_settings,
+        ensemble=DEFAULTS.get("ensemble", {}),
     conda:
         "../envs/sim.yaml"
     log:

@@ -1,5 +1,6 @@
-# Stage 1: one `sim run` per case (and per sweep point), its ideal reference, and the
-# tolerant runs of the extremes study. Threads and memory here are defaults; profiles may
+# Stage 1: one `sim run` per case (and per sweep point), the further members of its ensemble
+# (sim/ensemble.py; member 0 is the case's run), its ideal reference, and the tolerant runs of
+# the extremes study. Threads and memory here are defaults; profiles may
 # override them (workflow/profiles/*/config.yaml).
 
 
@@ -21,6 +22,27 @@ rule run:
         runtime=240,
     shell:
         "sim run {params.scene} -o {output} -q {params.sets} > {log} 2>&1"
+
+
+rule run_member:
+    output:
+        "results/{study}/run/{case}/member-{member}.nc",
+    params:
+        scene=scene_name,
+        overrides=run_overrides,
+        draw=member_draw,
+    conda:
+        "../envs/sim.yaml"
+    log:
+        "logs/{study}/run/{case}/member-{member}.log",
+    benchmark:
+        "results/benchmarks/{study}/run/{case}/member-{member}.tsv"
+    threads: 1
+    resources:
+        mem_mb=2000,
+        runtime=240,
+    script:
+        "../scripts/run_member.py"
 
 
 rule run_ideal:

@@ -1,25 +1,34 @@
 """The ``sim experiment`` subcommand: ``synthesize`` a recording, ``compare`` one with a run.
 
-The simulator (``sim.scene``, ``sim.run``) is imported inside the handler, so this module
-loads, and ``compare`` works, without it.
+The simulator (``sim.run``) is imported inside the handler, so this module loads, and
+``compare`` works, without it. Bad input (options, files) raises ValueError before any
+computation; ``sim.cli.main`` reports it with exit code 2.
 """
 
 import argparse
 import json
-import sys
+import math
 from pathlib import Path
 
 import numpy as np
 import xarray as xr
 
 from sim import __version__
-from sim.cli import add_scene_arguments
+from sim.cli.arguments import add_scene_arguments, check_output
 from sim.experiment.alignment import align_simulation
-from sim.experiment.errors import RecordingError
+from sim.experiment.metadata import CHANNEL_AXES, DEFAULT_CHANNEL
 from sim.experiment.metrics import compare
-from sim.experiment.recording import load_recording, write_atomically, write_recording
+from sim.experiment.recording import (
+    Recording,
+    load_recording,
+    metadata_path,
+    write_atomically,
+    write_recording,
+)
 from sim.experiment.sensor import SensorSettings, load_sensor_settings
 from sim.experiment.synthesize import synthesize_recording
+from sim.provenance import library_versions_json
+from sim.scene import DRIVE, Field, check_option
 
 DEFAULT_SEED = 20240607
 # Outputs of `compare`, fixed names inside --out-dir so a workflow can declare them.
@@ -38,9 +47,20 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
     synthesize = actions.add_parser(
         "synthesize",
-        help="simulate a scene and record its slider acceleration with the sensor model",
+        help="simulate a scene and record one body's acceleration with the sensor model",
     )
     add_scene_arguments(synthesize)
+    synthesize.add_argument(
+        "--body",
+        default=DEFAULT_CHANNEL["body"],
+        help="body whose reference-point acceleration is recorded (default: %(default)s)",
+    )
+    synthesize.add_argument(
+        "--axis",
+        choices=CHANNEL_AXES,
+        default=DEFAULT_CHANNEL["axis"],
+        help="global axis of the recorded acceleration (default: %(default)s)",
+    )
     synthesize.add_argument(
         "--sensor", type=Path, help="YAML file of sensor settings (default: built-in values)"
     )
@@ -80,61 +100,109 @@ def run_synthesize(args: argparse.Namespace) -> int:
     from sim.run import simulate
     from sim.scene import load_scene
 
+    check_option("--seed", args.seed, Field("int", 0))
+    check_output("--output", args.output)
     scene = load_scene(args.scene, args.overrides)
-    dataset = simulate(scene)
+    if args.body not in scene["bodies"]:
+        raise ValueError(
+            f"--body '{args.body}' is not a body of scene '{scene['name']}'; accepted: "
+            + ", ".join(scene["bodies"])
+        )
     sensor = SensorSettings() if args.sensor is None else load_sensor_settings(args.sensor)
+    # the sensor's anti-alias filter needs its cut-off below the simulated output's Nyquist
+    per_revolution = scene["simulation"]["output_per_revolution"]
+    output_rate_hz = per_revolution * scene["drive"]["speed_rpm"] / 60.0
+    if not sensor.bandwidth_hz < output_rate_hz / 2.0:
+        needed = math.floor(per_revolution * 2.0 * sensor.bandwidth_hz / output_rate_hz) + 1
+        raise ValueError(
+            f"the scene's output rate, simulation.output_per_revolution = {per_revolution} per "
+            f"revolution at {scene['drive']['speed_rpm']:g} rpm, is {output_rate_hz:g} Hz: too "
+            f"coarse for the sensor's bandwidth_hz {sensor.bandwidth_hz:g} Hz (it must exceed "
+            f"twice that); set simulation.output_per_revolution to at least {needed}"
+        )
+    dataset = simulate(scene)
+    channel = DEFAULT_CHANNEL | {"body": args.body, "axis": args.axis}
     provenance = {
         "scene": args.scene,
         "overrides": list(args.overrides),
         "sim_version": __version__,
         # Through JSON so the metadata holds plain YAML values whatever types the scene uses.
         "resolved_scene": json.loads(json.dumps(scene, default=str)),
-        "signal": 'acceleration.sel(body="slider", axis="y")',
+        "signal": f'acceleration.sel(body="{args.body}", axis="{args.axis}")',
     }
     frame, metadata = synthesize_recording(
         dataset.time.values,
-        dataset.acceleration.sel(body="slider", axis="y").values,
+        dataset.acceleration.sel(body=args.body, axis=args.axis).values,
         sensor=sensor,
         seed=args.seed,
         provenance=provenance,
+        channel=channel,
     )
-    try:
-        write_recording(args.output, frame, metadata)
-    except RecordingError as exc:
-        print(f"sim experiment synthesize: {exc}", file=sys.stderr)
-        return 1
+    write_recording(args.output, frame, metadata)
     print(f"wrote synthetic recording {args.output} ({len(frame)} samples, seed {args.seed})")
     return 0
+
+
+def simulated_channel(
+    run: xr.Dataset, recording: Recording, run_path: Path
+) -> tuple[np.ndarray, np.ndarray]:
+    """Time (s) and acceleration (m/s^2) of the channel the recording measures, from a run;
+    ValueError naming the channel and the bodies the run has when it has no such body."""
+    channel = recording.channel
+    if "acceleration" not in run or run.acceleration.dims != ("time", "body", "axis"):
+        raise ValueError(
+            f"run file '{run_path}' holds no 'acceleration' (time, body, axis): give a file "
+            "written by `sim run`"
+        )
+    bodies = [str(body) for body in run.body.values]
+    if channel["body"] not in bodies:
+        named = "" if "channel" in recording.metadata else " (the default: no 'channel' key)"
+        raise ValueError(
+            f"{metadata_path(recording.source)}: the recording measures the acceleration of "
+            f"body '{channel['body']}', point '{channel['point']}', axis '{channel['axis']}'"
+            f"{named}, but run file '{run_path}' has no body '{channel['body']}'; its bodies: "
+            f"{', '.join(bodies)}. Set channel.body in the metadata to the body the sensor is on"
+        )
+    acceleration = run.acceleration.sel(body=channel["body"], axis=channel["axis"])
+    return np.asarray(run.time.values, dtype=float), acceleration.values
 
 
 def run_compare(args: argparse.Namespace) -> int:
     """Handler of ``sim experiment compare``; returns the exit code."""
     from sim.plots.experiment import plot_overlay, plot_spectra
+    from sim.results import open_run
 
-    try:
-        recording = load_recording(args.recording)
-    except RecordingError as exc:
-        print(f"sim experiment compare: {exc}", file=sys.stderr)
-        return 1
+    check_option("--crank-rpm", args.crank_rpm, DRIVE["speed_rpm"])
+    check_option("--crank-angle-at-zero", args.crank_angle_at_zero, Field("number", unit="rad"))
     period = 60.0 / args.crank_rpm
-    with xr.open_dataset(args.simulation) as simulation:
-        time = np.asarray(simulation.time.values, dtype=float)
-        acceleration = simulation.acceleration.sel(body="slider", axis="y").values
-    alignment = align_simulation(
-        recording,
-        time,
-        acceleration,
-        crank_period_s=period,
-        crank_angle_at_zero_rad=args.crank_angle_at_zero,
-        max_shift_s=args.max_shift,
-    )
-    comparison = compare(alignment, crank_period_s=period, synthetic=recording.synthetic)
+    if args.max_shift is not None:
+        # cross-correlation repeats every period: a shift is unambiguous within half of one
+        check_option(
+            "--max-shift", args.max_shift, Field("number", 0.0, period / 2, open_min=True, unit="s")
+        )
+    check_output("--out-dir", args.out_dir, directory=True)
+    recording = load_recording(args.recording)
+    time, acceleration = simulated_channel(open_run(args.simulation), recording, args.simulation)
+    try:
+        alignment = align_simulation(
+            recording,
+            time,
+            acceleration,
+            crank_period_s=period,
+            crank_angle_at_zero_rad=args.crank_angle_at_zero,
+            max_shift_s=args.max_shift,
+        )
+        comparison = compare(alignment, crank_period_s=period, synthetic=recording.synthetic)
+    except ValueError as exc:  # the two files do not fit together: say which they are
+        raise ValueError(f"{args.recording} against run file '{args.simulation}': {exc}") from None
     dataset = comparison.to_dataset()
     dataset.attrs["recording"] = str(args.recording)
     dataset.attrs["simulation"] = str(args.simulation)
+    dataset.attrs["channel"] = json.dumps(recording.channel)
     summary = comparison.summary() | {
         "recording": str(args.recording),
         "simulation": str(args.simulation),
+        "channel": recording.channel,
     }
     if recording.synthetic:
         # the truth the alignment should recover, drawn by the sensor model
@@ -142,7 +210,7 @@ def run_compare(args: argparse.Namespace) -> int:
         summary["alignment"]["injected_shift_s"] = injected
     args.out_dir.mkdir(parents=True, exist_ok=True)
     outputs = {
-        COMPARISON_NETCDF: dataset.to_netcdf,
+        COMPARISON_NETCDF: dataset.assign_attrs(library_versions=library_versions_json()).to_netcdf,
         COMPARISON_JSON: lambda path: path.write_text(json.dumps(summary, indent=2) + "\n"),
         OVERLAY_FIGURE: lambda path: plot_overlay(dataset).savefig(path, dpi=150, format="png"),
         SPECTRA_FIGURE: lambda path: plot_spectra(dataset).savefig(path, dpi=150, format="png"),

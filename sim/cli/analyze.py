@@ -8,9 +8,13 @@ import numpy as np
 import xarray as xr
 
 from sim.analysis.run import analyze_run
+from sim.cli.arguments import check_output
+from sim.scene import Field, check_option
 
 #: default transient: this many revolutions, or a quarter of the run if that is fewer
 DEFAULT_TRANSIENT_REVOLUTIONS = 20
+#: what --transient accepts (crank revolutions)
+TRANSIENT = Field("int", 0, unit="revolutions")
 
 
 def default_transient(n_revolutions: int) -> int:
@@ -53,13 +57,13 @@ def register(subparsers: argparse._SubParsersAction) -> argparse.ArgumentParser:
 
 
 def _model_lyapunov(run: xr.Dataset, transient: int) -> xr.Dataset:
-    from sim.analysis.model_lyapunov import (
+    from sim.results import scene_of
+    from sim.studies.model_lyapunov import (
         DEFAULT_TOLERANCES,
         linkage_lyapunov,
         model_lyapunov_dataset,
         with_tolerances,
     )
-    from sim.results import scene_of
 
     if "scene" not in run.attrs:
         raise ValueError("missing global attribute 'scene' (the run's resolved scene as JSON)")
@@ -76,12 +80,15 @@ def _model_lyapunov(run: xr.Dataset, transient: int) -> xr.Dataset:
 
 def analyze_command(args: argparse.Namespace) -> int:
     """Handler of ``sim analyze``; returns the exit code."""
-    from sim.results import write_netcdf
+    from sim.results import open_run, write_netcdf
     from sim.run import SimulationError
 
+    # Bad input (options, an unreadable run file) goes to `sim`'s handler: exit code 2.
+    if args.transient is not None:
+        check_option("--transient", args.transient, TRANSIENT)
+    check_output("--output", args.output)
+    run = open_run(args.run)
     try:
-        with xr.open_dataset(args.run) as run:
-            run = run.load()
         transient = (
             default_transient(run.sizes.get("revolution", 0))
             if args.transient is None
@@ -100,7 +107,7 @@ def analyze_command(args: argparse.Namespace) -> int:
 
 def register_sweep(subparsers: argparse._SubParsersAction) -> argparse.ArgumentParser:
     """Add the ``sweep`` subcommand to the ``sim`` command's subparsers."""
-    from sim.cli import add_scene_arguments
+    from sim.cli.arguments import add_scene_arguments
 
     parser = subparsers.add_parser(
         "sweep",
@@ -165,16 +172,18 @@ def sweep_values(args: argparse.Namespace) -> list[float]:
     if args.values is not None:
         return list(args.values)
     start, stop, count = args.range
-    if count < 1 or not float(count).is_integer():
-        raise ValueError(f"--range COUNT = {count:g} is not accepted; expected a whole number ≥ 1")
+    check_option("--range COUNT", count, Field("int", 1))
     return [float(v) for v in np.linspace(start, stop, int(count))]
 
 
 def sweep_command(args: argparse.Namespace) -> int:
     """Handler of ``sim sweep``; returns the exit code (errors are reported by ``sim.cli``)."""
-    from sim.analysis.sweep import run_sweep
     from sim.results import write_netcdf
+    from sim.studies.sweep import run_sweep
 
+    check_option("--transient", args.transient, TRANSIENT)
+    check_output("--output", args.output)
+    check_output("--out-dir", args.out_dir, directory=True)
     values = sweep_values(args)
     combined = run_sweep(
         args.scene,

@@ -1,0 +1,79 @@
+"""The landing page's judges (sim.claims) on synthetic tables of the peaks studies."""
+
+import pandas as pd
+
+from sim.analysis.revolutions import Bootstrap
+from sim.analysis.verdicts import NOT_EVALUATED, SUPPORTED, UNDECIDED
+from sim.claims import judge_all
+from tests.analysis.test_verdicts import ensemble
+
+BOOT = Bootstrap(resamples=500, level=0.95, seed=1)
+
+
+def _study(tmp_path, name: str, setting: str, cases: dict[str, tuple[float, float]]) -> dict:
+    """peaks.csv and revolutions.csv of a study whose cases have a setting and a peak level."""
+    peaks = pd.DataFrame(
+        [
+            {
+                "case": case,
+                setting: value,
+                "peak_slider_acceleration_m_s2": 1.3 * level,
+                "peak_drive_torque_N_m": 0.13 * level,
+                "peak_contact_force_A_N": 10 * level,
+                "contact_events_per_revolution": 200 - level / 20,
+            }
+            for case, (value, level) in cases.items()
+        ]
+    )
+    revolutions = pd.concat(
+        [
+            ensemble(case, level, 3, 25, seed=i).assign(
+                contact_force_A=lambda t: 10 * t.drive_torque
+            )
+            for i, (case, (_, level)) in enumerate(cases.items())
+        ]
+    )
+    (tmp_path / name).mkdir()
+    peaks.to_csv(tmp_path / name / "peaks.csv", index=False)
+    revolutions.to_csv(tmp_path / name / "revolutions.csv", index=False)
+    role = name.replace("-", "_")
+    return {
+        f"{role}_peaks": str(tmp_path / name / "peaks.csv"),
+        f"{role}_revolutions": str(tmp_path / name / "revolutions.csv"),
+    }
+
+
+def test_peak_claims_are_tests_with_intervals(tmp_path):
+    inputs = _study(
+        tmp_path,
+        "clearance-size",
+        "clearance_A_mm",
+        {"clearance-0.4mm": (0.4, 1700.0), "clearance-0.1mm": (0.1, 1000.0)},
+    )
+    inputs |= _study(
+        tmp_path,
+        "speed",
+        "speed_rpm",
+        {"speed-30rpm": (30.0, 1000.0), "speed-60rpm": (60.0, 1000.0)},
+    )
+    claims, meta = judge_all(inputs, BOOT)
+    by_claim = {row["claim"]: row for row in claims}
+    larger = by_claim["Larger clearance gives larger acceleration and torque peaks."]
+    assert larger["verdict"] == SUPPORTED
+    assert "95% intervals" in larger["intervals"]
+    assert "clearance-0.4mm − clearance-0.1mm" in larger["intervals"]
+    assert "3 members × 25 revolutions" in larger["evidence"]
+    impacts = by_claim["Smaller clearance gives more frequent, smaller impacts."]
+    assert impacts["verdict"] == SUPPORTED
+    assert "contact force A" in impacts["intervals"]
+    speed = by_claim["Higher speed gives larger acceleration and torque peaks."]
+    assert speed["verdict"] == UNDECIDED
+    # studies not run are not evaluated, and say so
+    assert by_claim[claims[0]["claim"]]["verdict"] == NOT_EVALUATED
+    assert meta == {}
+    assert all(set(row) == {"claim", "verdict", "intervals", "evidence"} for row in claims)
+
+
+def test_nothing_run_evaluates_nothing():
+    claims, _ = judge_all({}, BOOT)
+    assert {row["verdict"] for row in claims} == {NOT_EVALUATED}
