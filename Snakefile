@@ -3,7 +3,14 @@
 # Studies are entries of config/config.yaml; the rules are grouped by stage in workflow/rules.
 
 
+import os
+
+
 configfile: "config/config.yaml"
+
+
+# the repository, for the pip entries of workflow/envs/sim.yaml (--software-deployment-method conda)
+os.environ.setdefault("SIM_ROOT", workflow.basedir)
 
 
 include: "workflow/rules/common.smk"
