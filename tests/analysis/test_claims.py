@@ -1,11 +1,11 @@
 """The landing page's judges (sim.claims) on synthetic tables of the peaks studies."""
 
 import pandas as pd
+from test_verdicts import ensemble
 
 from sim.analysis.revolutions import Bootstrap
 from sim.analysis.verdicts import NOT_EVALUATED, SUPPORTED, UNDECIDED
 from sim.claims import judge_all
-from tests.analysis.test_verdicts import ensemble
 
 BOOT = Bootstrap(resamples=500, level=0.95, seed=1)
 
