@@ -8,7 +8,7 @@ import numpy as np
 import xarray as xr
 
 from sim.analysis.run import analyze_run
-from sim.cli.arguments import check_output
+from sim.cli.arguments import add_scene_arguments, check_output
 from sim.scene import Field, check_option
 
 #: default transient: this many revolutions, or a quarter of the run if that is fewer
@@ -107,8 +107,6 @@ def analyze_command(args: argparse.Namespace) -> int:
 
 def register_sweep(subparsers: argparse._SubParsersAction) -> argparse.ArgumentParser:
     """Add the ``sweep`` subcommand to the ``sim`` command's subparsers."""
-    from sim.cli.arguments import add_scene_arguments
-
     parser = subparsers.add_parser(
         "sweep",
         help="simulate a scene over the values of a parameter: one bifurcation dataset",
