@@ -3,7 +3,7 @@
 Every netCDF file the project writes carries :func:`library_versions` as its
 ``library_versions`` attribute (JSON text), so a number can be traced to the numpy, scipy,
 numba and llvmlite that computed it. The versions installed by the README's commands are
-pinned in ``requirements.lock``.
+pinned in ``requirements.txt``.
 """
 
 import json

@@ -96,7 +96,7 @@ say "Python environment (docs/cluster.md, step 1)"
 python3 -m venv .venv
 # shellcheck disable=SC1091
 . .venv/bin/activate
-python -m pip install --quiet -r requirements.lock
+python -m pip install --quiet -r requirements.txt
 python -m pip install --quiet --no-deps -e .
 
 # ---------------------------------------------------------------- configure and start SLURM
