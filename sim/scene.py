@@ -21,6 +21,8 @@ from typing import Any
 
 import yaml
 
+from sim.yaml_keys import DuplicateKeyError, dotted, key_lines
+
 GROUND = "ground"
 
 
@@ -170,8 +172,14 @@ def _read_yaml(text: str, source: str) -> dict:
     loader = _Loader(text)
     try:
         node = loader.get_single_node()
-        _refuse_duplicate_keys(node, source)
+        key_lines(node)
         data = None if node is None else loader.construct_document(node)
+    except DuplicateKeyError as exc:
+        raise SceneError(
+            f"scene {source}: key '{dotted(exc.path)}' is defined twice (lines "
+            f"{exc.first_line} and {exc.second_line}); YAML would keep only the last: remove "
+            "or rename one"
+        ) from None
     except yaml.YAMLError as exc:
         raise SceneError(f"scene {source}: not valid YAML: {exc}") from None
     finally:
@@ -179,28 +187,6 @@ def _read_yaml(text: str, source: str) -> dict:
     if not isinstance(data, dict):
         raise SceneError(f"scene {source}: the file must hold a mapping of keys, not {data!r}")
     return data
-
-
-def _refuse_duplicate_keys(node: yaml.Node | None, source: str, where: str = "") -> None:
-    """SceneError for a mapping key defined twice under one parent, at any depth: the YAML
-    loader would silently keep the last (a body or joint defined twice would vanish)."""
-    if isinstance(node, yaml.SequenceNode):
-        for i, item in enumerate(node.value):
-            _refuse_duplicate_keys(item, source, f"{where}[{i}]")
-    if not isinstance(node, yaml.MappingNode):
-        return
-    first_line: dict[str, int] = {}
-    for key_node, value_node in node.value:
-        key = f"{where}.{key_node.value}" if where else str(key_node.value)
-        line = key_node.start_mark.line + 1
-        if key in first_line:
-            raise SceneError(
-                f"scene {source}: key '{key}' is defined twice (lines "
-                f"{first_line[key]} and {line}); YAML would keep only the last: remove or "
-                "rename one"
-            )
-        first_line[key] = line
-        _refuse_duplicate_keys(value_node, source, key)
 
 
 def _read_source(name_or_path: str) -> tuple[dict, str]:

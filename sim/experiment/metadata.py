@@ -17,6 +17,7 @@ from typing import Any
 import yaml
 
 from sim.experiment.errors import RecordingError
+from sim.yaml_keys import DuplicateKeyError, KeyPath, dotted, key_lines
 
 FORMAT_VERSION = 1
 DEFAULT_FILTER_ORDER = 4
@@ -55,7 +56,7 @@ _SYNTHESIS = {
     "provenance": (Mapping, True),
 }
 
-KeyLines = dict[tuple[str, ...], int]
+KeyLines = dict[KeyPath, int]
 
 
 def parse_metadata(text: str, source: str) -> tuple[dict[str, Any], KeyLines]:
@@ -77,8 +78,15 @@ def load_yaml(text: str, source: str) -> tuple[Any, KeyLines]:
     loader = yaml.SafeLoader(text)
     try:
         node = loader.get_single_node()
-        lines = _key_lines(node, source)
+        lines = key_lines(node)
         return (None if node is None else loader.construct_document(node)), lines
+    except DuplicateKeyError as exc:
+        raise RecordingError(
+            source,
+            f"key '{dotted(exc.path)}' is given twice (lines {exc.first_line} and "
+            f"{exc.second_line}); YAML would keep only the last: remove or rename one",
+            exc.second_line,
+        ) from None
     except yaml.YAMLError as exc:
         mark = getattr(exc, "problem_mark", None)
         line = None if mark is None else mark.line + 1
@@ -218,23 +226,3 @@ def _require_positive(value: float, key: tuple[str, ...], source: str, lines: Ke
         raise RecordingError(
             source, f"metadata key '{'.'.join(key)}' must be positive, got {value}", lines.get(key)
         )
-
-
-def _key_lines(node: yaml.Node | None, source: str, prefix: tuple[str, ...] = ()) -> KeyLines:
-    """1-based line of every mapping key in a composed YAML document, by key path; a key
-    given twice is an error (YAML would silently keep the last)."""
-    lines: KeyLines = {}
-    if isinstance(node, yaml.MappingNode):
-        for key_node, value_node in node.value:
-            path = (*prefix, str(key_node.value))
-            line = key_node.start_mark.line + 1
-            if path in lines:
-                raise RecordingError(
-                    source,
-                    f"key '{'.'.join(path)}' is given twice (lines {lines[path]} and {line}); "
-                    "YAML would keep only the last: remove or rename one",
-                    line,
-                )
-            lines[path] = line
-            lines.update(_key_lines(value_node, source, path))
-    return lines
