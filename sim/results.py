@@ -15,106 +15,36 @@ import xarray as xr
 
 from sim import __version__
 from sim.provenance import library_versions_json
+from sim.quantities import (
+    BY_NAME,
+    COORDINATE_BY_NAME,
+    SAMPLE,
+    SECTION,
+    attributes,
+    recorded,
+)
 from sim.solve.record import column_layout
 
 AXES = ["x", "y"]
 
-# name: (units, long_name)
-ATTRS = {
-    "time": ("s", "time since the start of the simulation"),
-    "revolution": ("1", "crank revolutions completed at the section"),
-    "crank_angle": ("rad", "crank angle from +x, counter-clockwise"),
-    "position": ("m", "position of the body's reference point"),
-    "velocity": ("m s-1", "velocity of the body's reference point"),
-    "acceleration": ("m s-2", "acceleration of the body's reference point"),
-    "angle": ("rad", "body angle (beams: angle of the chord between end nodes)"),
-    "deflection": (
-        "m",
-        "mid-span transverse deflection from the chord of the end nodes (beams; 0 if rigid)",
-    ),
-    "drive_torque": ("N m", "driving torque applied to the crank"),
-    "eccentricity": ("m", "journal centre minus bearing centre; slider: x across, y along guide"),
-    "eccentricity_rate": ("m s-1", "rate of the eccentricity"),
-    "penetration": ("m", "contact penetration depth (deepest, zero when apart)"),
-    "normal_force": ("N", "contact normal force (sum over contact points)"),
-    "friction_force": ("N", "contact friction force along the tangent (sum over contact points)"),
-    "in_contact": ("1", "contact state: 0 apart, 1 point contact, 2 face contact"),
-    "constraint_violation": ("m", "Euclidean norm of the ideal constraint residuals"),
-    "kinetic_energy": ("J", "kinetic energy"),
-    "potential_energy": ("J", "gravitational potential energy"),
-    "strain_energy": ("J", "elastic strain energy of the beams"),
-    "contact_energy": ("J", "elastic energy stored in contact deformation"),
-    "drive_work": ("J", "work done by the drive since the start"),
-    "dissipated_energy": ("J", "energy dissipated by contact damping and friction since the start"),
-    "energy_error": ("J", "energy balance residual T+V+U+U_c-W+D minus its initial value"),
-    "section_eccentricity": ("m", "eccentricity at each crank revolution (Poincare section)"),
-    "section_eccentricity_rate": ("m s-1", "eccentricity rate at each crank revolution"),
-    "section_position": ("m", "reference point position at each crank revolution"),
-    "section_velocity": ("m s-1", "reference point velocity at each crank revolution"),
-    "peak_acceleration": ("m s-2", "largest |acceleration| over every accepted step and sample"),
-    "peak_drive_torque": ("N m", "largest |driving torque| over every accepted step and sample"),
-    "peak_normal_force": ("N", "largest contact normal force over every accepted step and sample"),
-    "revolution_peak_acceleration": (
-        "m s-2",
-        "largest |acceleration| over every accepted step and sample of the revolution ending at "
-        "the section",
-    ),
-    "revolution_peak_drive_torque": (
-        "N m",
-        "largest |driving torque| over every accepted step and sample of the revolution ending at "
-        "the section",
-    ),
-    "revolution_peak_normal_force": (
-        "N",
-        "largest contact normal force over every accepted step and sample of the revolution "
-        "ending at the section",
-    ),
-    "revolution_contact_events": (
-        "1",
-        "contact onsets and separations located in the revolution ending at the section",
-    ),
-}
-
-DIMS = {
-    "crank_angle": ("time",),
-    "position": ("time", "body", "axis"),
-    "velocity": ("time", "body", "axis"),
-    "acceleration": ("time", "body", "axis"),
-    "angle": ("time", "body"),
-    "deflection": ("time", "body"),
-    "drive_torque": ("time",),
-    "eccentricity": ("time", "joint", "axis"),
-    "eccentricity_rate": ("time", "joint", "axis"),
-    "penetration": ("time", "joint"),
-    "normal_force": ("time", "joint"),
-    "friction_force": ("time", "joint"),
-    "in_contact": ("time", "joint"),
-    "constraint_violation": ("time",),
-    "kinetic_energy": ("time",),
-    "potential_energy": ("time",),
-    "strain_energy": ("time",),
-    "contact_energy": ("time",),
-    "drive_work": ("time",),
-    "dissipated_energy": ("time",),
-}
-RENAMED = {"contact_state": "in_contact"}
-SECTIONS = {
-    "section_eccentricity": "eccentricity",
-    "section_eccentricity_rate": "eccentricity_rate",
-    "section_position": "position",
-    "section_velocity": "velocity",
-}
-
 
 def decode_rows(rows: np.ndarray, bodies: list[str], joints: list[str]) -> dict[str, np.ndarray]:
-    """Column blocks of sample rows → arrays shaped (samples, ...)."""
+    """Column blocks of sample rows → each sampled quantity (`sim.quantities`), shaped
+    (samples, ...)."""
     out = {}
     for name, (first, shape) in column_layout(len(bodies), len(joints)).items():
         width = int(np.prod(shape, dtype=int))
-        out[RENAMED.get(name, name)] = rows[:, first : first + width].reshape(
-            (rows.shape[0], *shape)
-        )
+        out[name] = rows[:, first : first + width].reshape((rows.shape[0], *shape))
     return out
+
+
+def annotate(ds: xr.Dataset) -> xr.Dataset:
+    """`ds` with the CF attributes (units, long_name) of `sim.quantities` on every declared
+    variable and coordinate it holds."""
+    for name in ds.variables:
+        if name in BY_NAME or name in COORDINATE_BY_NAME:
+            ds[name].attrs.update(attributes(str(name)))
+    return ds
 
 
 def energy_balance(data: xr.Dataset | dict[str, np.ndarray]) -> xr.DataArray | np.ndarray:
@@ -162,7 +92,7 @@ def _revolution_peaks(
     data: dict[str, np.ndarray],
     n_sections: int,
     period: float,
-) -> dict[str, tuple[tuple[str, ...], np.ndarray]]:
+) -> dict[str, np.ndarray]:
     """Per-revolution peaks over every accepted step (the integrator's `rev_peaks` rows) and
     every sample of the revolution, as the whole-run peaks are; the part after the last
     section (a fractional last revolution) is left out."""
@@ -181,13 +111,10 @@ def _revolution_peaks(
     merged = steps.copy()
     np.maximum.at(merged, rev[keep], sampled[keep])
     return {
-        "revolution_peak_acceleration": (
-            ("revolution", "body", "axis"),
-            merged[:, : 2 * nb].reshape(n_sections, nb, 2),
-        ),
-        "revolution_peak_drive_torque": (("revolution",), merged[:, 2 * nb]),
-        "revolution_peak_normal_force": (("revolution", "joint"), merged[:, 2 * nb + 1 :]),
-        "revolution_contact_events": (("revolution",), rev_events[:n_sections].copy()),
+        "revolution_peak_acceleration": merged[:, : 2 * nb].reshape(n_sections, nb, 2),
+        "revolution_peak_drive_torque": merged[:, 2 * nb],
+        "revolution_peak_normal_force": merged[:, 2 * nb + 1 :],
+        "revolution_contact_events": rev_events[:n_sections].copy(),
     }
 
 
@@ -217,22 +144,25 @@ def build_dataset(
         "revolution": np.arange(section_rows.shape[0]),
     }
     ds = xr.Dataset(coords=coords)
-    for name, dims in DIMS.items():
-        ds[name] = (dims, data[name])
-    for name, source in SECTIONS.items():
-        ds[name] = (("revolution", *DIMS[source][1:]), sections[source])
+    for q in recorded(SAMPLE):
+        ds[q.name] = (q.dims, data[q.name])
+    for q in recorded(SECTION):
+        ds[q.name] = (q.dims, sections[q.source])
     nb = len(bodies)
     step_acc = peaks[: 2 * nb].reshape(nb, 2)
     ds["peak_acceleration"] = (
-        ("body", "axis"),
+        BY_NAME["peak_acceleration"].dims,
         np.maximum(step_acc, np.abs(data["acceleration"]).max(axis=0)),
     )
-    ds["peak_drive_torque"] = ((), max(peaks[2 * nb], float(np.abs(data["drive_torque"]).max())))
+    ds["peak_drive_torque"] = (
+        BY_NAME["peak_drive_torque"].dims,
+        max(peaks[2 * nb], float(np.abs(data["drive_torque"]).max())),
+    )
     ds["peak_normal_force"] = (
-        ("joint",),
+        BY_NAME["peak_normal_force"].dims,
         np.maximum(peaks[2 * nb + 1 :], data["normal_force"].max(axis=0, initial=0.0)),
     )
-    ds["energy_error"] = energy_balance(ds)
+    ds["energy_error"] = energy_balance(ds)  # dims ("time",), as sim.quantities declares
     if rev_peaks is not None and rev_events is not None:
         per_revolution = _revolution_peaks(
             rev_peaks,
@@ -242,14 +172,9 @@ def build_dataset(
             section_rows.shape[0],
             float(provenance["crank_period"]),
         )
-        for name, (dims, values) in per_revolution.items():
-            ds[name] = (dims, values)
-    for name, (units, long_name) in ATTRS.items():
-        if name in ds.variables:
-            ds[name].attrs.update(units=units, long_name=long_name)
-    ds["axis"].attrs["long_name"] = "component (global x, y; translational joints: across, along)"
-    ds["body"].attrs["long_name"] = "body name"
-    ds["joint"].attrs["long_name"] = "clearance joint name"
+        for name, values in per_revolution.items():
+            ds[name] = (BY_NAME[name].dims, values)
+    annotate(ds)
     ds.attrs.update(
         Conventions="CF-1.8",
         title=f"sim run of scene '{scene['name']}'",

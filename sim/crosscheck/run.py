@@ -30,7 +30,7 @@ import xarray as xr
 from sim import __version__
 from sim.crosscheck.model import CrossCheckError, ExudynModel, build_model
 from sim.model.assembly import crank_period
-from sim.results import ATTRS, AXES
+from sim.results import AXES, annotate
 from sim.run import prepare, simulate
 
 SOLVERS = ("trapezoidal_index2", "generalized_alpha")
@@ -186,9 +186,7 @@ def simulate_exudyn(
             "revolution": np.arange(sections.size),
         },
     )
-    for name, (units, long_name) in ATTRS.items():
-        if name in ds.variables:
-            ds[name].attrs.update(units=units, long_name=long_name)
+    annotate(ds)
     t_end = float(out_t[-1])
     ds.attrs.update(
         Conventions="CF-1.8",

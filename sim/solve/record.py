@@ -1,7 +1,8 @@
 """One output sample: every reported quantity at (t, y), as one row of floats.
 
-The column order is defined once, by `column_layout`, and followed by
-`record_row`; `sim.results` decodes rows with the same layout.
+The quantities and their order are declared once, in `sim.quantities`; `column_layout`
+places them in the row, `write_row` fills it in that order (each block marked with its
+quantity's name) and `sim.results` decodes rows with the same layout.
 """
 
 import numpy as np
@@ -18,6 +19,7 @@ from sim.model.system import (
     TJ_PX,
     TJ_PY,
 )
+from sim.quantities import SAMPLE, recorded, shape
 from sim.solve.dae import (
     SC_CONTACT_ENERGY,
     SC_DRIVE_TORQUE,
@@ -29,43 +31,23 @@ from sim.solve.dae import (
 
 
 def column_layout(n_bodies: int, n_joints: int) -> dict[str, tuple[int, tuple[int, ...]]]:
-    """Name → (first column, shape per sample) of every recorded quantity, in the
-    order `record_row` writes them."""
-    shapes = {
-        "crank_angle": (),
-        "position": (n_bodies, 2),
-        "velocity": (n_bodies, 2),
-        "acceleration": (n_bodies, 2),
-        "angle": (n_bodies,),
-        "deflection": (n_bodies,),
-        "drive_torque": (),
-        "eccentricity": (n_joints, 2),
-        "eccentricity_rate": (n_joints, 2),
-        "penetration": (n_joints,),
-        "normal_force": (n_joints,),
-        "friction_force": (n_joints,),
-        "contact_state": (n_joints,),
-        "constraint_violation": (),
-        "kinetic_energy": (),
-        "potential_energy": (),
-        "strain_energy": (),
-        "contact_energy": (),
-        "drive_work": (),
-        "dissipated_energy": (),
-    }
+    """Name → (first column, shape per sample) of every sampled quantity (`sim.quantities`,
+    recorded SAMPLE), in the table's order, which `write_row` follows."""
     layout = {}
     col = 0
-    for name, shape in shapes.items():
-        layout[name] = (col, shape)
-        col += int(np.prod(shape, dtype=int))
+    for q in recorded(SAMPLE):
+        per_sample = shape(q.dims[1:], n_bodies, n_joints)
+        layout[q.name] = (col, per_sample)
+        col += int(np.prod(per_sample, dtype=int))
     return layout
 
 
 def row_width(n_bodies: int, n_joints: int) -> int:
     """Number of columns of one sample row."""
-    layout = column_layout(n_bodies, n_joints)
-    first, _ = layout["dissipated_energy"]
-    return first + 1
+    return sum(
+        int(np.prod(per_sample, dtype=int))
+        for _, per_sample in column_layout(n_bodies, n_joints).values()
+    )
 
 
 @kernel
@@ -102,20 +84,25 @@ def record_row(sys, work, mem: np.ndarray, t: float, y: np.ndarray, row: np.ndar
 @kernel
 def write_row(sys, work, y: np.ndarray, row: np.ndarray) -> None:
     """Write one sample row of the state y from the evaluation at y that work
-    holds (accelerations work.qdd, forces, contact outputs, constraint residual)."""
+    holds (accelerations work.qdd, forces, contact outputs, constraint residual). One block
+    per sampled quantity of `sim.quantities`, in its order (tests/core/test_sample_row.py
+    checks each block against an independent reference)."""
     n = sys.n
     q = y[:n]
     qd = y[n : 2 * n]
     nb = sys.ref_idx.shape[0]
     c = 0
+    # crank_angle
     row[c] = q[sys.drive_coord] if sys.drive_coord >= 0 else 0.0
     c += 1
+    # position, velocity, acceleration
     for src in range(3):
         x = q if src == 0 else (qd if src == 1 else work.qdd)
         for b in range(nb):
             for a in range(2):
                 row[c] = reference_point(sys, b, x, a)
                 c += 1
+    # angle
     for b in range(nb):
         i0 = sys.ang_idx[b, 0]
         if sys.body_is_beam[b] == 1:
@@ -124,15 +111,18 @@ def write_row(sys, work, y: np.ndarray, row: np.ndarray) -> None:
         else:
             row[c] = q[i0]
         c += 1
+    # deflection
     for b in range(nb):
         row[c] = 0.0
         if sys.body_is_beam[b] == 1:
             row[c] = beam_midspan_deflection(q, sys, b)
         c += 1
+    # drive_torque
     row[c] = work.scalars[SC_DRIVE_TORQUE]
     c += 1
     nr = sys.rj_pts.shape[0]
     nj = nr + sys.tj_off.shape[0]
+    # eccentricity, eccentricity_rate
     for j in range(nj):
         if j < nr:
             ex, ey = eccentricity(sys, j, q)
@@ -153,17 +143,19 @@ def write_row(sys, work, y: np.ndarray, row: np.ndarray) -> None:
         row[c + 2 * nj + 2 * j] = vx
         row[c + 2 * nj + 2 * j + 1] = vy
     c += 4 * nj
+    # penetration, normal_force, friction_force, in_contact
     for out in (OUT_PENETRATION, OUT_NORMAL_FORCE, OUT_FRICTION_FORCE, OUT_STATE):
         for j in range(nj):
             row[c] = work.jout[j, out]
             c += 1
+    # constraint_violation
     viol = 0.0
     for i in range(sys.m):
         viol += work.phi[i] * work.phi[i]
     row[c] = np.sqrt(viol)
-    row[c + 1] = kinetic_energy(sys, work, qd)
-    row[c + 2] = potential_energy(sys, q)
-    row[c + 3] = work.scalars[SC_STRAIN_ENERGY]
-    row[c + 4] = work.scalars[SC_CONTACT_ENERGY]
-    row[c + 5] = y[2 * n]
-    row[c + 6] = y[2 * n + 1]
+    row[c + 1] = kinetic_energy(sys, work, qd)  # kinetic_energy
+    row[c + 2] = potential_energy(sys, q)  # potential_energy
+    row[c + 3] = work.scalars[SC_STRAIN_ENERGY]  # strain_energy
+    row[c + 4] = work.scalars[SC_CONTACT_ENERGY]  # contact_energy
+    row[c + 5] = y[2 * n]  # drive_work
+    row[c + 6] = y[2 * n + 1]  # dissipated_energy

@@ -1,0 +1,194 @@
+"""Each sampled quantity lands in its own columns (sim.quantities, sim.solve.record.write_row).
+
+The slider-crank of sim/scenes/slider-crank.yaml (crank r = 0.05 m, rod l = 0.20 m, slider
+on the horizontal guide through the crank pivot O, steel, 300 rpm from φ = 0) has closed
+forms for every quantity while its joints are ideal and its links rigid: φ = ω t, the
+slider at x = r cos φ + √(l² − r² sin² φ), the rod at angle −asin(r sin φ / l), the
+energies from the masses ρ A L (bars) and ρ a b d (block). With clearance in A (revolute) and
+B (translational), the joint columns are checked against the body columns they follow from
+and against the contact law's structure. A quantity written into another's columns fails
+these comparisons: every block is compared with a reference that differs from its neighbours'.
+"""
+
+import numpy as np
+import pytest
+
+from sim.quantities import SAMPLE, recorded
+
+R, L = 0.05, 0.20  # m: crank, rod
+OMEGA = 2 * np.pi * 300 / 60  # rad/s
+RHO, G = 7801.0, 9.81
+MASS = {
+    "crank": RHO * R * 0.02 * 0.01,
+    "rod": RHO * L * 0.02 * 0.01,
+    "slider": RHO * 0.06 * 0.04 * 0.02,
+}
+INERTIA = {"crank": MASS["crank"] * R**2 / 12, "rod": MASS["rod"] * L**2 / 12}
+
+
+def slider_x(phi):
+    """Slider position along the guide (m) at crank angle phi (closed form)."""
+    return R * np.cos(phi) + np.sqrt(L**2 - (R * np.sin(phi)) ** 2)
+
+
+def closed_forms(t):
+    """Body reference points (centres), velocities, rod angle and rod angular rate at times t
+    of the ideal rigid slider-crank."""
+    phi = OMEGA * t
+    xs = slider_x(phi)
+    root = np.sqrt(L**2 - (R * np.sin(phi)) ** 2)
+    xs_d = -R * OMEGA * np.sin(phi) * (1 + R * np.cos(phi) / root)
+    xs_dd = -(OMEGA**2) * (
+        R * np.cos(phi)
+        + R**2 * np.cos(2 * phi) / root
+        + R**4 * (np.sin(phi) * np.cos(phi)) ** 2 / root**3
+    )
+    tip = R * np.stack([np.cos(phi), np.sin(phi)], axis=1)
+    tip_d = R * OMEGA * np.stack([-np.sin(phi), np.cos(phi)], axis=1)
+    zero = np.zeros_like(t)
+    slider = np.stack([xs, zero], axis=1)
+    slider_d = np.stack([xs_d, zero], axis=1)
+    rod_angle = -np.arcsin(R * np.sin(phi) / L)
+    rod_rate = -R * OMEGA * np.cos(phi) / (L * np.cos(rod_angle))
+    return {
+        "position": {"crank": tip / 2, "rod": (tip + slider) / 2, "slider": slider},
+        "velocity": {"crank": tip_d / 2, "rod": (tip_d + slider_d) / 2, "slider": slider_d},
+        "crank_acceleration": -(OMEGA**2) * tip / 2,
+        "slider_acceleration": np.stack([xs_dd, zero], axis=1),
+        "rod_angle": rod_angle,
+        "rod_rate": rod_rate,
+    }
+
+
+@pytest.fixture(scope="module")
+def ideal(run):
+    return run(
+        "slider-crank",
+        "simulation.revolutions=1",
+        "simulation.output_per_revolution=400",
+        "solver.rtol=1e-9",
+        "solver.atol=1e-11",
+    )
+
+
+@pytest.fixture(scope="module")
+def clearance(run):
+    return run(
+        "slider-crank",
+        "simulation.revolutions=1",
+        "simulation.output_per_revolution=2000",
+        "joints.A.clearance=5e-4",
+        "joints.B.clearance=5e-4",
+        "contact.friction=0.1",
+    )
+
+
+def test_every_sampled_quantity_is_in_the_dataset_with_its_dims(ideal, clearance):
+    for q in recorded(SAMPLE):
+        assert ideal[q.name].dims == q.dims
+        assert clearance[q.name].dims == q.dims
+    assert list(clearance.joint.values) == ["A", "B"]
+
+
+def test_kinematic_columns_of_the_ideal_rigid_slider_crank(ideal):
+    # Bounds: the run's tolerance is 1e-9; the constraints hold the linkage to round-off
+    # and the drive to the crank angle: measured below 2e-11 of each quantity's scale, so
+    # 1e-7 (accelerations 1e-6) leaves a margin above 1000.
+    t = ideal.time.values
+    ref = closed_forms(t)
+    np.testing.assert_allclose(ideal.crank_angle, OMEGA * t, rtol=0, atol=1e-7)
+    angle = ideal.angle.sel(body=["crank", "rod", "slider"]).values
+    np.testing.assert_allclose(angle[:, 0], OMEGA * t, rtol=0, atol=1e-7)
+    np.testing.assert_allclose(angle[:, 1], ref["rod_angle"], rtol=0, atol=1e-7)
+    np.testing.assert_allclose(angle[:, 2], 0.0, rtol=0, atol=1e-7)
+    for what, scale in (("position", R), ("velocity", R * OMEGA)):
+        for body, expected in ref[what].items():
+            got = ideal[what].sel(body=body).values
+            np.testing.assert_allclose(got, expected, rtol=0, atol=1e-7 * scale, err_msg=what)
+    acc = R * OMEGA**2
+    np.testing.assert_allclose(
+        ideal.acceleration.sel(body="crank"), ref["crank_acceleration"], rtol=0, atol=1e-6 * acc
+    )
+    np.testing.assert_allclose(
+        ideal.acceleration.sel(body="slider"), ref["slider_acceleration"], rtol=0, atol=1e-6 * acc
+    )
+    assert np.all(ideal.deflection.values == 0.0)  # rigid links
+    assert ideal.sizes["joint"] == 0  # ideal joints: no joint columns
+    assert float(ideal.constraint_violation.max()) < 1e-9  # m
+    assert np.all(ideal.constraint_violation.values >= 0.0)
+
+
+def test_energy_columns_of_the_ideal_rigid_slider_crank(ideal):
+    t = ideal.time.values
+    ref = closed_forms(t)
+    kinetic = sum(
+        0.5 * MASS[b] * (ref["velocity"][b] ** 2).sum(axis=1) for b in ("crank", "rod", "slider")
+    )
+    kinetic += 0.5 * INERTIA["crank"] * OMEGA**2 + 0.5 * INERTIA["rod"] * ref["rod_rate"] ** 2
+    potential = sum(MASS[b] * G * ref["position"][b][:, 1] for b in ("crank", "rod", "slider"))
+    scale = float(kinetic.max())
+    # Bounds: the velocities match the closed forms to 1e-7 (above), so the energies to
+    # 2e-7 of the kinetic energy's scale; 1e-6 leaves a margin of 5 (measured: 1e-10).
+    np.testing.assert_allclose(ideal.kinetic_energy, kinetic, rtol=0, atol=1e-6 * scale)
+    np.testing.assert_allclose(ideal.potential_energy, potential, rtol=0, atol=1e-6 * scale)
+    # No dissipation: the drive's work is the gain of T + V.
+    gain = kinetic + potential - kinetic[0] - potential[0]
+    np.testing.assert_allclose(ideal.drive_work, gain, rtol=0, atol=1e-6 * scale)
+    for name in ("strain_energy", "contact_energy", "dissipated_energy"):
+        assert np.all(ideal[name].values == 0.0), name
+    # The torque's power is the rate of that gain: d(T + V)/dt = τ ω, compared as the
+    # trapezoid integral of τ ω over the 400 samples of the revolution; the trapezoid's
+    # error falls as Δt² (measured 1.5e-3 of the scale at 100 samples, so 9e-5 at 400):
+    # the bound 1e-3 leaves a margin of 10.
+    power = ideal.drive_torque.values * OMEGA
+    integral = np.concatenate([[0.0], np.cumsum(0.5 * (power[1:] + power[:-1]) * np.diff(t))])
+    np.testing.assert_allclose(integral, gain, rtol=0, atol=1e-3 * scale)
+
+
+def test_joint_columns_follow_the_body_columns_and_the_contact_law(clearance):
+    ds = clearance
+    pos, vel, angle = ds.position, ds.velocity, ds.angle
+    # B guides the slider along x through O: x across the guide is the slider's y, y along
+    # it is the slider's x, exactly (the slider's centre is its reference point).
+    ecc_b = ds.eccentricity.sel(joint="B").values
+    np.testing.assert_array_equal(ecc_b[:, 0], pos.sel(body="slider", axis="y").values)
+    np.testing.assert_array_equal(ecc_b[:, 1], pos.sel(body="slider", axis="x").values)
+    rate_b = ds.eccentricity_rate.sel(joint="B").values
+    np.testing.assert_array_equal(rate_b[:, 0], vel.sel(body="slider", axis="y").values)
+    np.testing.assert_array_equal(rate_b[:, 1], vel.sel(body="slider", axis="x").values)
+
+    # A: journal (the crank's end) minus bearing centre (the rod's start), from the bodies'
+    # centres and angles; round-off only.
+    def end(body, sign, half):
+        th = angle.sel(body=body).values
+        p = pos.sel(body=body).values
+        return p + sign * half * np.stack([np.cos(th), np.sin(th)], axis=1)
+
+    ecc_a = end("crank", 1, R / 2) - end("rod", -1, L / 2)
+    np.testing.assert_allclose(ds.eccentricity.sel(joint="A"), ecc_a, rtol=0, atol=1e-12)
+    # The rate of A's eccentricity is its time derivative: compared by the trapezoid rule
+    # over the 2000 samples of the revolution, the error is the impacts' share (measured
+    # 1.2e-5 m, bound 5e-5 m: margin 4), a tenth of the clearance 5e-4 m.
+    t = ds.time.values
+    rate_a = ds.eccentricity_rate.sel(joint="A").values
+    integral = np.cumsum(0.5 * (rate_a[1:] + rate_a[:-1]) * np.diff(t)[:, None], axis=0)
+    np.testing.assert_allclose(ecc_a[1:] - ecc_a[0], integral, rtol=0, atol=5e-5)
+    # The contact columns: a force and a stored energy only while penetrating, the state
+    # 1 or 2 exactly then, friction within Coulomb's cone.
+    pen = ds.penetration.values
+    force = ds.normal_force.values
+    state = ds.in_contact.values
+    assert np.all(pen >= 0.0) and pen.max() > 0.0
+    assert set(np.unique(state)) <= {0.0, 1.0, 2.0} and state.max() > 0
+    np.testing.assert_array_equal(state > 0, pen > 0)
+    assert np.all(force[pen == 0] == 0.0) and force.max() > 0.0
+    assert np.all(np.abs(ds.friction_force.values) <= 0.1 * force * (1 + 1e-12))
+    assert np.abs(ds.friction_force.values).max() > 0.0
+    contact_energy = ds.contact_energy.values
+    apart = (pen == 0).all(axis=1)
+    assert np.all(contact_energy[apart] == 0.0) and contact_energy.max() > 0.0
+    dissipated = ds.dissipated_energy.values
+    # nondecreasing up to round-off (measured steps down to -4e-14 J), as test_energy checks
+    assert np.all(np.diff(dissipated) >= -1e-9 * dissipated[-1]) and dissipated[-1] > 0.0
+    assert ds.attrs["energy_error_relative"] < 1e-4
+    assert np.all(ds.deflection.values == 0.0) and np.all(ds.strain_energy.values == 0.0)
