@@ -23,6 +23,7 @@ from sim.quantities import (
     attributes,
     recorded,
 )
+from sim.scene import with_defaults
 from sim.solve.record import column_layout
 
 AXES = ["x", "y"]
@@ -181,7 +182,7 @@ def build_dataset(
         source=f"sim {__version__}",
         history=provenance.pop("history"),
         scene=json.dumps(scene),
-        assumptions=json.dumps(scene.get("assumptions", [])),
+        assumptions=json.dumps(scene["assumptions"]),
         sim_version=__version__,
         energy_error_relative=energy_error_relative(ds),
         **provenance,
@@ -222,8 +223,9 @@ def write_netcdf(ds: xr.Dataset, path: str | os.PathLike) -> Path:
 
 
 def scene_of(ds: xr.Dataset) -> dict:
-    """The resolved scene a run was made from."""
-    return json.loads(ds.attrs["scene"])
+    """The resolved scene a run was made from, defaults filled (a file written before a
+    default was declared has them too)."""
+    return with_defaults(json.loads(ds.attrs["scene"]))
 
 
 def open_run(path: str | os.PathLike) -> xr.Dataset:

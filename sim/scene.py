@@ -6,6 +6,8 @@ simulate it (see `sim/scenes/sixbar.yaml`). It is loaded by built-in name
 with `base: <name>` and list only what it changes. `--set dotted.key=value`
 overrides any key; values are parsed as YAML scalars.
 
+Every default is declared here, in the tables of keys below (`Field.default`); loading
+fills them in, so the resolved scene has every key and no other module supplies a default.
 Validation runs before any computation and raises `SceneError` naming the
 source, the key, the offending value and what is accepted.
 """
@@ -14,7 +16,7 @@ import copy
 import math
 import re
 from collections.abc import Iterable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from importlib import resources
 from pathlib import Path
 from typing import Any
@@ -30,10 +32,23 @@ class SceneError(ValueError):
     """A scene that cannot be used, with a message naming the source and key."""
 
 
+class _NoDefault:
+    """Marks a key without a default (None is a default: null, computed)."""
+
+    def __repr__(self) -> str:
+        return "NO_DEFAULT"
+
+
+NO_DEFAULT = _NoDefault()
+
+
 @dataclass(frozen=True)
 class Field:
     """What one key accepts: a type, an optional numeric range (inclusive unless
-    `open_min`), or a fixed set of choices; `unit` is shown in messages."""
+    `open_min`), or a fixed set of choices; `unit` is shown in messages. An optional key
+    (`required=False`) may have a `default`, which loading fills in; a default of None
+    accepts null, meaning "computed from the rest of the scene" (the comment beside the key
+    says how)."""
 
     kind: str  # 'number', 'int', 'str', 'bool', 'vector2', 'vector3', 'list', 'mapping'
     minimum: float | None = None
@@ -42,16 +57,17 @@ class Field:
     choices: tuple[str, ...] = ()
     unit: str = ""
     required: bool = True
+    default: Any = NO_DEFAULT
 
 
-def _num(lo=None, hi=None, unit="", open_min=False, required=True) -> Field:
-    return Field("number", lo, hi, open_min, unit=unit, required=required)
+def _num(lo=None, hi=None, unit="", open_min=False, required=True, default=NO_DEFAULT) -> Field:
+    return Field("number", lo, hi, open_min, unit=unit, required=required, default=default)
 
 
 TOP = {
     "name": Field("str"),
-    "description": Field("str", required=False),
-    "assumptions": Field("list", required=False),
+    "description": Field("str", required=False, default=""),
+    "assumptions": Field("list", required=False, default=[]),
     "base": Field("str", required=False),
     "gravity": Field("vector2", -1e3, 1e3, unit="m/s^2"),
     "materials": Field("mapping"),
@@ -68,16 +84,23 @@ MATERIAL = {
     "poisson": _num(0.0, 0.499),
     "density": _num(1.0, 1e5, "kg/m^3"),
 }
+# The defaults are listed for users in README.md ("Scenes"); the ASSUMED ones also in
+# docs/assumptions.md.
 BODY_COMMON = {
     "kind": Field("str", choices=("rigid", "beam")),
     "shape": Field("str", choices=("bar", "block")),
     "material": Field("str"),
     "hint": Field("mapping"),
-    "mass": _num(0.0, 1e6, "kg", open_min=True, required=False),
-    "inertia": _num(0.0, 1e6, "kg m^2", open_min=True, required=False),
-    "points": Field("mapping", required=False),
-    "elements": Field("int", 1, 64, required=False),
-    "damping": Field("mapping", required=False),
+    # null: ASSUMED uniform body, bar ρ A L, block ρ L W D (sim.model.assembly)
+    "mass": _num(0.0, 1e6, "kg", open_min=True, required=False, default=None),
+    # null: ASSUMED uniform body about its centre, bar m L²/12, block m (L² + W²)/12
+    "inertia": _num(0.0, 1e6, "kg m^2", open_min=True, required=False, default=None),
+    # named points beyond `centre` (and `start`, `end` of a bar); none on a beam
+    "points": Field("mapping", required=False, default={}),
+    # ASSUMED ANCF elements of a beam (the paper gives none); unused while rigid
+    "elements": Field("int", 1, 64, required=False, default=2),
+    # none, as in the paper
+    "damping": Field("mapping", required=False, default={"kind": "none"}),
 }
 BAR = {
     **BODY_COMMON,
@@ -252,15 +275,39 @@ def apply_overrides(scene: dict, overrides: Iterable[str], source: str = "--set"
     return out
 
 
+def _fill(data: Any, spec: dict) -> None:
+    """Set each missing key of the mapping `data` that has a default in `spec` (nothing
+    when `data` is not a mapping: validation reports that)."""
+    if isinstance(data, dict):
+        for key, field in spec.items():
+            if key not in data and field.default is not NO_DEFAULT:
+                data[key] = copy.deepcopy(field.default)
+
+
+def with_defaults(scene: dict) -> dict:
+    """A copy of `scene` with every optional key that has a default filled in (the defaults
+    of the tables above; README.md lists them). Safe on a scene that still has errors
+    and on one already filled: it only adds keys that are missing."""
+    out = copy.deepcopy(scene)
+    _fill(out, TOP)
+    bodies = out.get("bodies")
+    for body in bodies.values() if isinstance(bodies, dict) else ():
+        if isinstance(body, dict):
+            _fill(body, BODY_COMMON)
+    return out
+
+
 def load_scene(name_or_path: str, overrides: Sequence[str] = ()) -> dict:
     """Load a built-in scene or a YAML file, apply overrides and validate.
 
-    Returns the resolved scene: a plain mapping with every key present."""
+    Returns the resolved scene: a plain mapping with every key present, defaults filled in
+    (before the overrides, so that they can set keys inside a default such as
+    `bodies.<name>.damping.kind`, and after, for what the overrides add)."""
     raw, source = _read_source(name_or_path)
     if "base" in raw:
         base_raw, _ = _read_source(str(raw["base"]))
         raw = deep_merge(base_raw, {k: v for k, v in raw.items() if k != "base"})
-    scene = apply_overrides(raw, overrides)
+    scene = with_defaults(apply_overrides(with_defaults(raw), overrides))
     validate_scene(scene, source)
     return scene
 
@@ -274,6 +321,8 @@ def dump_scene(scene: dict) -> str:
 
 
 def _describe(field: Field) -> str:
+    if field.default is None:
+        return _describe(replace(field, default=NO_DEFAULT)) + ", or null (computed)"
     if field.choices:
         return "one of " + ", ".join(repr(c) for c in field.choices)
     lo = "" if field.minimum is None else f"{field.minimum:g} {'<' if field.open_min else '≤'} "
@@ -299,6 +348,8 @@ def _check_number(x: Any, field: Field) -> bool:
 
 
 def _check_value(value: Any, field: Field) -> bool:
+    if value is None and field.default is None:
+        return True  # null: computed from the rest of the scene
     if field.kind in ("number", "int"):
         return _check_number(value, field)
     if field.kind == "str":
@@ -362,11 +413,12 @@ def body_points(body: dict) -> list[str]:
     if body["kind"] == "beam":
         return ["start", "end"]
     names = ["centre"] + (["start", "end"] if body["shape"] == "bar" else [])
-    return names + list(body.get("points", {}))
+    return names + list(body["points"])
 
 
 def validate_scene(scene: dict, source: str = "<scene>") -> None:
-    """Raise SceneError for the first problem found in a resolved scene."""
+    """Raise SceneError for the first problem found in a resolved scene (defaults filled
+    by `with_defaults`)."""
     _check_section({k: v for k, v in scene.items()}, TOP, "scene", source)
     for name, mat in scene["materials"].items():
         _check_section(mat, MATERIAL, f"materials.{name}", source)
@@ -390,25 +442,24 @@ def validate_scene(scene: dict, source: str = "<scene>") -> None:
         _check_section(body["hint"], HINT, f"{where}.hint", source)
         if body["kind"] == "beam" and shape != "bar":
             raise SceneError(f"scene {source}: '{where}.kind' = 'beam' needs shape 'bar'")
-        if body["kind"] == "beam" and "points" in body:
+        if body["kind"] == "beam" and body["points"]:
             raise SceneError(
                 f"scene {source}: '{where}.points' is not accepted for a beam; "
                 "joints attach to its 'start' and 'end' nodes"
             )
-        for pname, vec in body.get("points", {}).items():
+        for pname, vec in body["points"].items():
             if not _check_value(vec, HINT["position"]):
                 raise SceneError(
                     f"scene {source}: '{where}.points.{pname}' = {vec!r} is not accepted; "
                     f"expected {_describe(HINT['position'])}"
                 )
-        if "damping" in body:
-            _check_section(body["damping"], DAMPING, f"{where}.damping", source)
-            needed = {"stiffness": "coefficient", "modal": "ratio"}.get(body["damping"]["kind"])
-            if needed and needed not in body["damping"]:
-                raise SceneError(
-                    f"scene {source}: '{where}.damping.kind' = '{body['damping']['kind']}' "
-                    f"needs '{where}.damping.{needed}' ({_describe(DAMPING[needed])})"
-                )
+        _check_section(body["damping"], DAMPING, f"{where}.damping", source)
+        needed = {"stiffness": "coefficient", "modal": "ratio"}.get(body["damping"]["kind"])
+        if needed and needed not in body["damping"]:
+            raise SceneError(
+                f"scene {source}: '{where}.damping.kind' = '{body['damping']['kind']}' "
+                f"needs '{where}.damping.{needed}' ({_describe(DAMPING[needed])})"
+            )
     body_names = [GROUND, *bodies]
     for name, joint in scene["joints"].items():
         _validate_joint(scene, name, joint, body_names, source)

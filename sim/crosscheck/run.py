@@ -194,7 +194,7 @@ def simulate_exudyn(
         source=f"exudyn {exu.__version__} via sim {__version__} (sim.crosscheck)",
         history=f"{datetime.datetime.now(datetime.UTC).isoformat()} sim.crosscheck",
         scene=json.dumps(scene),
-        assumptions=json.dumps(scene.get("assumptions", [])),
+        assumptions=json.dumps(scene["assumptions"]),
         sim_version=__version__,
         exudyn_version=exu.__version__,
         exudyn_settings=json.dumps(asdict(settings)),

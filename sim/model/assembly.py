@@ -72,7 +72,8 @@ def body_mass_properties(body: dict, material: dict) -> tuple[float, float]:
         length, width, depth = body["size"]
         m = rho * length * width * depth
         j = m * (length**2 + width**2) / 12.0
-    return body.get("mass", m), body.get("inertia", j)
+    m = m if body["mass"] is None else body["mass"]
+    return m, j if body["inertia"] is None else body["inertia"]
 
 
 def stiffness_damping_coefficient(body: dict, material: dict) -> float:
@@ -82,7 +83,7 @@ def stiffness_damping_coefficient(body: dict, material: dict) -> float:
     damping ratio ζ at the link's first bending mode, pinned at both ends,
     ω₁ = (π/L)² √(EI/ρA) (Euler–Bernoulli), so β = 2ζ/ω₁; being
     stiffness-proportional, a mode of frequency ω gets ζ ω/ω₁."""
-    damping = body.get("damping", {"kind": "none"})
+    damping = body["damping"]
     if damping["kind"] == "stiffness":
         return damping["coefficient"]
     if damping["kind"] == "modal":
@@ -100,7 +101,7 @@ def _local_points(body: dict) -> dict[str, tuple[float, float]]:
     if body["shape"] == "bar":
         half = 0.5 * body["length"]
         pts.update(start=(-half, 0.0), end=(half, 0.0))
-    pts.update({k: tuple(v) for k, v in body.get("points", {}).items()})
+    pts.update({k: tuple(v) for k, v in body["points"].items()})
     return pts
 
 
@@ -127,7 +128,7 @@ def build_system(scene: dict, *, ideal: bool = False, rigid: bool = False) -> tu
         beam = bodies[name]["kind"] == "beam" and not rigid
         offset[name] = n
         is_beam[name] = beam
-        elements[name] = bodies[name].get("elements", 2) if beam else 0
+        elements[name] = bodies[name]["elements"] if beam else 0
         n += 4 * (elements[name] + 1) if beam else 3
 
     mass = np.zeros((n, n))

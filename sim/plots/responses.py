@@ -78,7 +78,7 @@ def _title(run: xr.Dataset) -> str:
     joints = [
         f"{name} {joint['clearance'] * 1e3:g} mm"
         for name, joint in scene["joints"].items()
-        if joint.get("clearance", 0.0) > 0
+        if joint["clearance"] > 0
     ]
     rpm = scene["drive"]["speed_rpm"]
     return f"{', '.join(joints) or 'no clearance'} at {rpm:g} rpm"

@@ -49,9 +49,7 @@ def _setting(case: str, run: xr.Dataset) -> dict:
     """What a run of the fidelity study was: integrator, tolerances, link model, clearances,
     duration and output rate, and what it cost (integrator wall time in s, real-time factor)."""
     scene = json.loads(run.attrs["scene"])
-    elements = sorted(
-        {b.get("elements", 2) for b in scene["bodies"].values() if b["kind"] == "beam"}
-    )
+    elements = sorted({b["elements"] for b in scene["bodies"].values() if b["kind"] == "beam"})
     clearances = [name for name, joint in scene["joints"].items() if joint["clearance"] > 0]
     return {
         "case": case,

@@ -24,7 +24,7 @@ def violation_bound(ds: xr.Dataset, limits: dict) -> float:
     smallest clearance (drift must not compete with the clearance being modelled), or
     `constraint_violation` for a run without clearance."""
     joints = scene_of(ds)["joints"].values()
-    clearances = [j.get("clearance", 0.0) for j in joints if j.get("clearance", 0.0) > 0.0]
+    clearances = [j["clearance"] for j in joints if j["clearance"] > 0.0]
     if clearances and "constraint_violation_share" in limits:
         return limits["constraint_violation_share"] * min(clearances)
     return limits.get("constraint_violation", 1e-4)
