@@ -13,6 +13,7 @@ configfile: "config/config.yaml"
 os.environ.setdefault("SIM_ROOT", workflow.basedir)
 
 
+include: "workflow/rules/paths.smk"
 include: "workflow/rules/common.smk"
 include: "workflow/rules/simulate.smk"
 include: "workflow/rules/analyze.smk"

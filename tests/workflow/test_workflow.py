@@ -50,6 +50,21 @@ def test_invalid_config_is_rejected(tmp_path):
     assert "wooden" in done.stdout + done.stderr
 
 
+def test_every_rule_has_its_files_named_once():
+    # workflow/rules/paths.smk names every file: each rule's log and benchmark (JOBS), and
+    # no two names share a pattern (one file, one name).
+    names: dict = {}
+    exec((ROOT / "workflow/rules/paths.smk").read_text(), names)
+    paths, jobs = names["PATHS"], names["JOBS"]
+    assert len(set(paths.values())) == len(paths)
+    assert len(set(jobs.values())) == len(jobs)
+    done = _snakemake("--list-rules")
+    assert done.returncode == 0, done.stderr
+    rules = set(done.stdout.split()) - {"all"}
+    assert rules == set(jobs), rules ^ set(jobs)
+    assert names["path"]("member", study="s", case="c", member=2) == "results/s/run/c/member-2.nc"
+
+
 def _check_file(path: Path) -> None:
     assert path.exists(), path
     assert path.stat().st_size > 0, path

@@ -3,17 +3,17 @@
 
 rule analyze:
     input:
-        "results/{study}/run/{case}.nc",
+        PATHS["run"],
     output:
-        "results/{study}/analysis/{case}.nc",
+        PATHS["analysis"],
     params:
         transient=transient,
     conda:
         "../envs/sim.yaml"
     log:
-        "logs/{study}/analysis/{case}.log",
+        log_file("analyze"),
     benchmark:
-        "results/benchmarks/{study}/analysis/{case}.tsv"
+        benchmark_file("analyze")
     threads: 1
     resources:
         mem_mb=2000,

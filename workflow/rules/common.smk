@@ -1,7 +1,8 @@
-"""Helpers of the workflow: the resolved study settings, file names and rule inputs.
+"""Helpers of the workflow: the resolved study settings and rule inputs.
 
 Every study is a config entry (config/config.yaml); this file turns entries into file lists and
-`sim` arguments. Rules call these functions by name (no lambdas inside rules).
+`sim` arguments. Rules call these functions by name (no lambdas inside rules). File names are
+those of paths.smk (`PATHS`, `path`), included before this file.
 """
 
 import importlib.util
@@ -135,24 +136,12 @@ def extreme_checks(wildcards):
     return study(wildcards.study).get("checks", {})
 
 
-# ---------------------------------------------------------------- file names
-def run_file(name, case):
-    return f"results/{name}/run/{case}.nc"
-
-
-def ideal_file(name, case):
-    return f"results/{name}/ideal/{case}.nc"
-
-
-def analysis_file(name, case):
-    return f"results/{name}/analysis/{case}.nc"
-
-
+# ---------------------------------------------------------------- files of a study (paths.smk)
 def member_file(name, case, member):
     """Run of ensemble member `member` of a case: member 0 is the nominal run."""
     if int(member) == 0:
-        return run_file(name, case)
-    return f"results/{name}/run/{case}/member-{member}.nc"
+        return path("run", study=name, case=case)
+    return path("member", study=name, case=case, member=member)
 
 
 def ensemble_size(name):
@@ -192,26 +181,26 @@ def bootstrap_settings(wildcards=None):
 
 
 def runs_of_study(wildcards):
-    return [run_file(wildcards.study, case) for case in case_names(wildcards.study)]
+    return paths_of_study("run", wildcards.study, case_names(wildcards.study))
 
 
 def ideals_of_study(wildcards):
-    return [ideal_file(wildcards.study, case) for case in case_names(wildcards.study)]
+    return paths_of_study("ideal", wildcards.study, case_names(wildcards.study))
 
 
 def analyses_of_study(wildcards):
-    return [analysis_file(wildcards.study, case) for case in case_names(wildcards.study)]
+    return paths_of_study("analysis", wildcards.study, case_names(wildcards.study))
 
 
 def statuses_of_study(wildcards):
-    return [f"results/{wildcards.study}/status/{case}.json" for case in case_names(wildcards.study)]
+    return paths_of_study("status", wildcards.study, case_names(wildcards.study))
 
 
 def ideal_reference_of_case(wildcards):
     """The ideal run a tolerant case is compared with: only for the study's
     `ideal_reference` case (clearance 0 must reproduce the ideal joint)."""
     if study(wildcards.study).get("ideal_reference") == wildcards.case:
-        return [ideal_file(wildcards.study, wildcards.case)]
+        return [path("ideal", study=wildcards.study, case=wildcards.case)]
     return []
 
 
@@ -239,14 +228,16 @@ def fidelity_long_cases(name):
 
 
 def fidelity_analyses(wildcards):
-    return [analysis_file(wildcards.study, case) for case in fidelity_long_cases(wildcards.study)]
+    return paths_of_study("analysis", wildcards.study, fidelity_long_cases(wildcards.study))
 
 
 def fidelity_settings(wildcards):
-    """Reference cases, short-horizon window and transient of a fidelity study."""
+    """Reference cases, the long-horizon cases (in the order of `fidelity_analyses`),
+    short-horizon window and transient of a fidelity study."""
     settings = study(wildcards.study)
     return {
         "reference": settings["reference"],
+        "long_cases": fidelity_long_cases(wildcards.study),
         "window": settings.get("window", 2.0),
         "long_reference": settings.get("long_reference"),
         "transient": settings["transient"],
@@ -285,10 +276,7 @@ def crosscheck_metrics(wildcards):
     """Metrics of every case of a cross-check study; none when Exudyn is not importable."""
     if not EXUDYN:
         return []
-    return [
-        f"results/{wildcards.study}/crosscheck/{case}/metrics.json"
-        for case in case_names(wildcards.study)
-    ]
+    return paths_of_study("crosscheck_metrics", wildcards.study, case_names(wildcards.study))
 
 
 # ---------------------------------------------------------------- experiment data
@@ -297,10 +285,11 @@ def recording_file(wildcards):
     measured = study(wildcards.study)["experiment"].get("recording")
     if measured and Path(measured).exists():
         return measured
-    return f"results/{wildcards.study}/recording/synthetic.csv"
+    return path("synthetic_recording", study=wildcards.study)
 
 
 def recording_meta(wildcards):
+    """The metadata beside the recording (data/experiment/README.md: <name>.meta.yaml)."""
     csv = recording_file(wildcards)
     return csv[: -len(".csv")] + ".meta.yaml"
 
@@ -324,48 +313,54 @@ def sensor_option(wildcards):
 
 
 # ---------------------------------------------------------------- targets
+#: the final files of each analysis a study may list (config `analyses`), per case or per study
+CASE_TARGETS = {
+    "responses": ("responses",),
+    "trajectories": ("trajectories",),
+    "chaos": ("phase", "poincare", "lyapunov_csv", "lyapunov_html"),
+    "experiment": ("comparison_json",),
+}
+STUDY_TARGETS = {
+    "peaks": (
+        "peaks_csv",
+        "peaks_html",
+        "revolutions",
+        "revolution_statistics_csv",
+        "revolution_statistics_html",
+    ),
+    "bifurcation": (
+        "bifurcation",
+        "bifurcation_figure",
+        "bifurcation_lyapunov_csv",
+        "bifurcation_lyapunov_html",
+    ),
+    "work_precision": ("work_precision_csv", "work_precision_html", "work_precision_figure"),
+    "extremes": ("extremes_csv", "extremes_html"),
+    "crosscheck": ("crosscheck_csv", "crosscheck_html", "crosscheck_summary"),
+}
+
+
 def study_targets(name):
     """Every final file of one study."""
     cases = case_names(name)
-    base = f"results/{name}"
     out = []
-    if has(name, "responses"):
-        out += [f"{base}/figures/responses_{case}.png" for case in cases]
-    if has(name, "trajectories"):
-        out += [f"{base}/figures/trajectories_{case}.png" for case in cases]
-    if has(name, "chaos"):
+    for analysis in study(name)["analyses"]:
         for case in cases:
-            out += [f"{base}/figures/phase_{case}.png", f"{base}/figures/poincare_{case}.png"]
-            out += [f"{base}/tables/lyapunov_{case}.csv", f"{base}/tables/lyapunov_{case}.html"]
-    if has(name, "peaks"):
-        out += [f"{base}/tables/peaks.csv", f"{base}/tables/peaks.html"]
-        out += [f"{base}/tables/revolutions.csv", f"{base}/tables/revolution_statistics.csv"]
-        out += [f"{base}/tables/revolution_statistics.html"]
-    if has(name, "bifurcation"):
-        out += [f"{base}/bifurcation.nc", f"{base}/figures/bifurcation.png"]
-        out += [f"{base}/tables/bifurcation_lyapunov.csv", f"{base}/tables/bifurcation_lyapunov.html"]
-    if has(name, "experiment"):
-        out += [f"{base}/comparison/{case}/comparison.json" for case in cases]
-    if has(name, "work_precision"):
-        out += [f"{base}/tables/work_precision.csv", f"{base}/tables/work_precision.html"]
-        out += [f"{base}/figures/work_precision.png"]
-    if has(name, "extremes"):
-        out += [f"{base}/tables/extremes.csv", f"{base}/tables/extremes.html"]
-    if has(name, "crosscheck"):
-        out += [f"{base}/tables/crosscheck.{ext}" for ext in ("csv", "html", "json")]
-        if EXUDYN:
-            out += [f"{base}/crosscheck/{case}/overlay.png" for case in cases]
-            out += [
-                f"{base}/crosscheck/{case}/statistics.png"
-                for case in cases
-                if crosscheck_has_clearance(name, case)
-            ]
+            out += [path(f, study=name, case=case) for f in CASE_TARGETS.get(analysis, ())]
+        out += [path(f, study=name) for f in STUDY_TARGETS.get(analysis, ())]
+    if has(name, "crosscheck") and EXUDYN:
+        out += paths_of_study("crosscheck_overlay", name, cases)
+        out += [
+            path("crosscheck_statistics", study=name, case=case)
+            for case in cases
+            if crosscheck_has_clearance(name, case)
+        ]
     return out
 
 
 def all_targets():
     out = [target for name in STUDIES for target in study_targets(name)]
-    return out + ["results/report/landing.rst", "results/report/claims.csv"]
+    return out + [PATHS["landing"], PATHS["claims"]]
 
 
 def landing_inputs(wildcards):
@@ -382,34 +377,33 @@ def landing_inputs(wildcards):
         name = enabled(role)
         if name:
             case = case_names(name)[0]
-            out[f"{role}_run"] = run_file(name, case)
-            out[f"{role}_ideal"] = ideal_file(name, case)
+            out[f"{role}_run"] = path("run", study=name, case=case)
+            out[f"{role}_ideal"] = path("ideal", study=name, case=case)
             if has(name, "chaos"):
-                out[f"{role}_analysis"] = analysis_file(name, case)
+                out[f"{role}_analysis"] = path("analysis", study=name, case=case)
     for role in ("clearance_size", "speed"):
         name = enabled(role)
         if name and has(name, "peaks"):
-            out[f"{role}_peaks"] = f"results/{name}/tables/peaks.csv"
-            out[f"{role}_revolutions"] = f"results/{name}/tables/revolutions.csv"
+            out[f"{role}_peaks"] = path("peaks_csv", study=name)
+            out[f"{role}_revolutions"] = path("revolutions", study=name)
     for role in ("bifurcation_clearance", "bifurcation_speed"):
         name = enabled(role)
         if name and has(name, "bifurcation"):
-            out[f"{role}_table"] = f"results/{name}/tables/bifurcation_lyapunov.csv"
+            out[f"{role}_table"] = path("bifurcation_lyapunov_csv", study=name)
     name = enabled("cross_check")
     if name and has(name, "crosscheck"):
-        out["cross_check_summary"] = f"results/{name}/tables/crosscheck.json"
+        out["cross_check_summary"] = path("crosscheck_summary", study=name)
     name = enabled("experiment")
     if name and has(name, "experiment"):
         case = case_names(name)[0]
-        out["experiment_comparison"] = f"results/{name}/comparison/{case}/comparison.json"
+        out["experiment_comparison"] = path("comparison_json", study=name, case=case)
         out["experiment_meta"] = landing_recording(wildcards)["meta"]
     return out
 
 
 def landing_page():
     """The report's front page: the generated claims page once it exists."""
-    generated = "results/report/landing.rst"
-    return generated if Path(generated).exists() else "report/pending.rst"
+    return PATHS["landing"] if Path(PATHS["landing"]).exists() else "report/pending.rst"
 
 
 def sweep_settings(wildcards):

@@ -10,11 +10,11 @@ localrules:
 
 rule crosscheck_case:
     output:
-        sim="results/{study}/crosscheck/{case}/sim.nc",
-        exudyn="results/{study}/crosscheck/{case}/exudyn.nc",
-        metrics="results/{study}/crosscheck/{case}/metrics.json",
+        sim=PATHS["crosscheck_sim"],
+        exudyn=PATHS["crosscheck_exudyn"],
+        metrics=PATHS["crosscheck_metrics"],
         overlay=report(
-            "results/{study}/crosscheck/{case}/overlay.png",
+            PATHS["crosscheck_overlay"],
             caption="../report/crosscheck_overlay.rst",
             category="{study}",
             subcategory="{case}",
@@ -28,9 +28,9 @@ rule crosscheck_case:
     conda:
         "../envs/sim.yaml"
     log:
-        "logs/{study}/crosscheck/{case}.log",
+        log_file("crosscheck_case"),
     benchmark:
-        "results/benchmarks/{study}/crosscheck/{case}.tsv"
+        benchmark_file("crosscheck_case")
     threads: 1
     resources:
         mem_mb=4000,
@@ -41,11 +41,11 @@ rule crosscheck_case:
 
 rule crosscheck_statistics:
     input:
-        sim="results/{study}/crosscheck/{case}/sim.nc",
-        exudyn="results/{study}/crosscheck/{case}/exudyn.nc",
+        sim=PATHS["crosscheck_sim"],
+        exudyn=PATHS["crosscheck_exudyn"],
     output:
         report(
-            "results/{study}/crosscheck/{case}/statistics.png",
+            PATHS["crosscheck_statistics"],
             caption="../report/crosscheck_statistics.rst",
             category="{study}",
             subcategory="{case}",
@@ -55,9 +55,9 @@ rule crosscheck_statistics:
     conda:
         "../envs/sim.yaml"
     log:
-        "logs/{study}/crosscheck/{case}_statistics.log",
+        log_file("crosscheck_statistics"),
     benchmark:
-        "results/benchmarks/{study}/crosscheck/{case}_statistics.tsv"
+        benchmark_file("crosscheck_statistics")
     script:
         "../scripts/crosscheck.py"
 
@@ -67,19 +67,19 @@ rule crosscheck_table:
         metrics=crosscheck_metrics,
     output:
         csv=report(
-            "results/{study}/tables/crosscheck.csv",
+            PATHS["crosscheck_csv"],
             caption="../report/crosscheck_table.rst",
             category="{study}",
         ),
-        html="results/{study}/tables/crosscheck.html",
-        summary="results/{study}/tables/crosscheck.json",
+        html=PATHS["crosscheck_html"],
+        summary=PATHS["crosscheck_summary"],
     params:
         cases=study_cases,
     conda:
         "../envs/sim.yaml"
     log:
-        "logs/{study}/tables/crosscheck.log",
+        log_file("crosscheck_table"),
     benchmark:
-        "results/benchmarks/{study}/tables/crosscheck.tsv"
+        benchmark_file("crosscheck_table")
     script:
         "../scripts/crosscheck.py"

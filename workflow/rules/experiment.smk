@@ -4,8 +4,8 @@
 
 rule synthesize_recording:
     output:
-        csv="results/{study}/recording/synthetic.csv",
-        meta="results/{study}/recording/synthetic.meta.yaml",
+        csv=PATHS["synthetic_recording"],
+        meta=PATHS["synthetic_meta"],
     params:
         scene=scene_name,
         sets=synthetic_sets,
@@ -14,9 +14,9 @@ rule synthesize_recording:
     conda:
         "../envs/sim.yaml"
     log:
-        "logs/{study}/recording/synthetic.log",
+        log_file("synthesize_recording"),
     benchmark:
-        "results/benchmarks/{study}/recording/synthetic.tsv"
+        benchmark_file("synthesize_recording")
     threads: 1
     resources:
         mem_mb=2000,
@@ -30,18 +30,18 @@ rule compare_experiment:
     input:
         recording=recording_file,
         meta=recording_meta,
-        run="results/{study}/run/{case}.nc",
+        run=PATHS["run"],
     output:
-        json="results/{study}/comparison/{case}/comparison.json",
-        netcdf="results/{study}/comparison/{case}/comparison.nc",
+        json=PATHS["comparison_json"],
+        netcdf=PATHS["comparison_netcdf"],
         overlay=report(
-            "results/{study}/comparison/{case}/overlay.png",
+            PATHS["comparison_overlay"],
             caption="../report/experiment_overlay.rst",
             category="{study}",
             subcategory="{case}",
         ),
         spectra=report(
-            "results/{study}/comparison/{case}/spectra.png",
+            PATHS["comparison_spectra"],
             caption="../report/experiment_spectra.rst",
             category="{study}",
             subcategory="{case}",
@@ -52,9 +52,9 @@ rule compare_experiment:
     conda:
         "../envs/sim.yaml"
     log:
-        "logs/{study}/comparison/{case}.log",
+        log_file("compare_experiment"),
     benchmark:
-        "results/benchmarks/{study}/comparison/{case}.tsv"
+        benchmark_file("compare_experiment")
     threads: 1
     resources:
         mem_mb=2000,

@@ -18,11 +18,11 @@ localrules:
 
 rule responses:
     input:
-        run="results/{study}/run/{case}.nc",
-        ideal="results/{study}/ideal/{case}.nc",
+        run=PATHS["run"],
+        ideal=PATHS["ideal"],
     output:
         report(
-            "results/{study}/figures/responses_{case}.png",
+            PATHS["responses"],
             caption="../report/responses.rst",
             category="{study}",
             subcategory="{case}",
@@ -30,19 +30,19 @@ rule responses:
     conda:
         "../envs/sim.yaml"
     log:
-        "logs/{study}/figures/responses_{case}.log",
+        log_file("responses"),
     benchmark:
-        "results/benchmarks/{study}/figures/responses_{case}.tsv"
+        benchmark_file("responses")
     script:
         "../scripts/figures.py"
 
 
 rule trajectories:
     input:
-        run="results/{study}/run/{case}.nc",
+        run=PATHS["run"],
     output:
         report(
-            "results/{study}/figures/trajectories_{case}.png",
+            PATHS["trajectories"],
             caption="../report/trajectories.rst",
             category="{study}",
             subcategory="{case}",
@@ -50,19 +50,19 @@ rule trajectories:
     conda:
         "../envs/sim.yaml"
     log:
-        "logs/{study}/figures/trajectories_{case}.log",
+        log_file("trajectories"),
     benchmark:
-        "results/benchmarks/{study}/figures/trajectories_{case}.tsv"
+        benchmark_file("trajectories")
     script:
         "../scripts/figures.py"
 
 
 rule phase:
     input:
-        analysis="results/{study}/analysis/{case}.nc",
+        analysis=PATHS["analysis"],
     output:
         report(
-            "results/{study}/figures/phase_{case}.png",
+            PATHS["phase"],
             caption="../report/phase.rst",
             category="{study}",
             subcategory="{case}",
@@ -70,19 +70,19 @@ rule phase:
     conda:
         "../envs/sim.yaml"
     log:
-        "logs/{study}/figures/phase_{case}.log",
+        log_file("phase"),
     benchmark:
-        "results/benchmarks/{study}/figures/phase_{case}.tsv"
+        benchmark_file("phase")
     script:
         "../scripts/figures.py"
 
 
 rule poincare:
     input:
-        analysis="results/{study}/analysis/{case}.nc",
+        analysis=PATHS["analysis"],
     output:
         report(
-            "results/{study}/figures/poincare_{case}.png",
+            PATHS["poincare"],
             caption="../report/poincare.rst",
             category="{study}",
             subcategory="{case}",
@@ -90,20 +90,20 @@ rule poincare:
     conda:
         "../envs/sim.yaml"
     log:
-        "logs/{study}/figures/poincare_{case}.log",
+        log_file("poincare"),
     benchmark:
-        "results/benchmarks/{study}/figures/poincare_{case}.tsv"
+        benchmark_file("poincare")
     script:
         "../scripts/figures.py"
 
 
 rule lyapunov_table:
     input:
-        analysis="results/{study}/analysis/{case}.nc",
+        analysis=PATHS["analysis"],
     output:
-        csv="results/{study}/tables/lyapunov_{case}.csv",
+        csv=PATHS["lyapunov_csv"],
         html=report(
-            "results/{study}/tables/lyapunov_{case}.html",
+            PATHS["lyapunov_html"],
             caption="../report/lyapunov.rst",
             category="{study}",
             subcategory="{case}",
@@ -111,9 +111,9 @@ rule lyapunov_table:
     conda:
         "../envs/sim.yaml"
     log:
-        "logs/{study}/tables/lyapunov_{case}.log",
+        log_file("lyapunov_table"),
     benchmark:
-        "results/benchmarks/{study}/tables/lyapunov_{case}.tsv"
+        benchmark_file("lyapunov_table")
     script:
         "../scripts/figures.py"
 
@@ -123,19 +123,21 @@ rule peaks_table:
         runs=runs_of_study,
         ideals=ideals_of_study,
     output:
-        csv="results/{study}/tables/peaks.csv",
+        csv=PATHS["peaks_csv"],
         html=report(
-            "results/{study}/tables/peaks.html",
+            PATHS["peaks_html"],
             caption="../report/peaks.rst",
             category="{study}",
             subcategory="tables",
         ),
+    params:
+        cases=study_cases,
     conda:
         "../envs/sim.yaml"
     log:
-        "logs/{study}/tables/peaks.log",
+        log_file("peaks_table"),
     benchmark:
-        "results/benchmarks/{study}/tables/peaks.tsv"
+        benchmark_file("peaks_table")
     script:
         "../scripts/figures.py"
 
@@ -144,10 +146,10 @@ rule revolution_table:
     input:
         runs=members_of_study,
     output:
-        revolutions="results/{study}/tables/revolutions.csv",
-        csv="results/{study}/tables/revolution_statistics.csv",
+        revolutions=PATHS["revolutions"],
+        csv=PATHS["revolution_statistics_csv"],
         html=report(
-            "results/{study}/tables/revolution_statistics.html",
+            PATHS["revolution_statistics_html"],
             caption="../report/revolution_statistics.rst",
             category="{study}",
             subcategory="tables",
@@ -159,9 +161,9 @@ rule revolution_table:
     conda:
         "../envs/sim.yaml"
     log:
-        "logs/{study}/tables/revolutions.log",
+        log_file("revolution_table"),
     benchmark:
-        "results/benchmarks/{study}/tables/revolutions.tsv"
+        benchmark_file("revolution_table")
     script:
         "../scripts/revolutions.py"
 
@@ -219,15 +221,15 @@ rule work_precision:
         runs=runs_of_study,
         analyses=fidelity_analyses,
     output:
-        csv="results/{study}/tables/work_precision.csv",
+        csv=PATHS["work_precision_csv"],
         html=report(
-            "results/{study}/tables/work_precision.html",
+            PATHS["work_precision_html"],
             caption="../report/work_precision_table.rst",
             category="{study}",
             subcategory="tables",
         ),
         figure=report(
-            "results/{study}/figures/work_precision.png",
+            PATHS["work_precision_figure"],
             caption="../report/work_precision.rst",
             category="{study}",
             subcategory="figures",
@@ -238,9 +240,9 @@ rule work_precision:
     conda:
         "../envs/sim.yaml"
     log:
-        "logs/{study}/tables/work_precision.log",
+        log_file("work_precision"),
     benchmark:
-        "results/benchmarks/{study}/tables/work_precision.tsv"
+        benchmark_file("work_precision")
     script:
         "../scripts/figures.py"
 
@@ -249,9 +251,9 @@ rule extremes_table:
     input:
         statuses=statuses_of_study,
     output:
-        csv="results/{study}/tables/extremes.csv",
+        csv=PATHS["extremes_csv"],
         html=report(
-            "results/{study}/tables/extremes.html",
+            PATHS["extremes_html"],
             caption="../report/extremes.rst",
             category="{study}",
             subcategory="tables",
@@ -259,8 +261,8 @@ rule extremes_table:
     conda:
         "../envs/sim.yaml"
     log:
-        "logs/{study}/tables/extremes.log",
+        log_file("extremes_table"),
     benchmark:
-        "results/benchmarks/{study}/tables/extremes.tsv"
+        benchmark_file("extremes_table")
     script:
         "../scripts/figures.py"

@@ -12,9 +12,9 @@ rule landing:
         unpack(landing_inputs),
         template="report/landing.rst.jinja",
     output:
-        rst="results/report/landing.rst",
+        rst=PATHS["landing"],
         csv=report(
-            "results/report/claims.csv",
+            PATHS["claims"],
             caption="../report/claims.rst",
             category="0 claims",
         ),
@@ -28,8 +28,8 @@ rule landing:
     conda:
         "../envs/sim.yaml"
     log:
-        "logs/report/landing.log",
+        log_file("landing"),
     benchmark:
-        "results/benchmarks/report/landing.tsv"
+        benchmark_file("landing")
     script:
         "../scripts/landing.py"

@@ -6,16 +6,16 @@
 
 rule run:
     output:
-        "results/{study}/run/{case}.nc",
+        PATHS["run"],
     params:
         scene=scene_name,
         sets=run_sets,
     conda:
         "../envs/sim.yaml"
     log:
-        "logs/{study}/run/{case}.log",
+        log_file("run"),
     benchmark:
-        "results/benchmarks/{study}/run/{case}.tsv"
+        benchmark_file("run")
     threads: 1
     resources:
         mem_mb=2000,
@@ -26,7 +26,7 @@ rule run:
 
 rule run_member:
     output:
-        "results/{study}/run/{case}/member-{member}.nc",
+        PATHS["member"],
     params:
         scene=scene_name,
         overrides=run_overrides,
@@ -34,9 +34,9 @@ rule run_member:
     conda:
         "../envs/sim.yaml"
     log:
-        "logs/{study}/run/{case}/member-{member}.log",
+        log_file("run_member"),
     benchmark:
-        "results/benchmarks/{study}/run/{case}/member-{member}.tsv"
+        benchmark_file("run_member")
     threads: 1
     resources:
         mem_mb=2000,
@@ -47,16 +47,16 @@ rule run_member:
 
 rule run_ideal:
     output:
-        "results/{study}/ideal/{case}.nc",
+        PATHS["ideal"],
     params:
         scene=scene_name,
         sets=ideal_sets,
     conda:
         "../envs/sim.yaml"
     log:
-        "logs/{study}/ideal/{case}.log",
+        log_file("run_ideal"),
     benchmark:
-        "results/benchmarks/{study}/ideal/{case}.tsv"
+        benchmark_file("run_ideal")
     threads: 1
     resources:
         mem_mb=2000,
@@ -69,7 +69,7 @@ rule run_tolerant:
     input:
         ideal=ideal_reference_of_case,
     output:
-        "results/{study}/status/{case}.json",
+        PATHS["status"],
     params:
         scene=scene_name,
         sets=run_sets,
@@ -78,9 +78,9 @@ rule run_tolerant:
     conda:
         "../envs/sim.yaml"
     log:
-        "logs/{study}/status/{case}.log",
+        log_file("run_tolerant"),
     benchmark:
-        "results/benchmarks/{study}/status/{case}.tsv"
+        benchmark_file("run_tolerant")
     threads: 1
     resources:
         mem_mb=2000,

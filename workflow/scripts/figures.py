@@ -54,8 +54,7 @@ def rule_lyapunov_table(sm) -> None:
 def rule_peaks_table(sm) -> None:
     runs = [_open(path) for path in sm.input.runs]
     ideals = [_open(path) for path in sm.input.ideals]
-    cases = [Path(path).stem for path in sm.input.runs]
-    table = tables.peaks_table(cases, runs, ideals)
+    table = tables.peaks_table(list(sm.params.cases), runs, ideals)
     _write_table(table, sm.output, f"Peak values: {sm.wildcards.study}")
 
 
@@ -82,7 +81,10 @@ def rule_bifurcation_figure(sm) -> None:
 def rule_work_precision(sm) -> None:
     settings = sm.params.fidelity
     runs = [_open(path) for path in sm.input.runs]
-    analyses = {Path(path).stem: _open(path) for path in sm.input.analyses}
+    analyses = {
+        case: _open(path)
+        for case, path in zip(settings["long_cases"], sm.input.analyses, strict=True)
+    }
     table = tables.work_precision_table(
         list(sm.params.cases),
         runs,
