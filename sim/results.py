@@ -18,13 +18,16 @@ from sim.provenance import library_versions_json
 from sim.quantities import (
     BY_NAME,
     COORDINATE_BY_NAME,
+    PEAK,
+    REVOLUTION_COUNT,
+    REVOLUTION_PEAK,
     SAMPLE,
     SECTION,
     attributes,
     recorded,
 )
 from sim.scene import with_defaults
-from sim.solve.record import column_layout
+from sim.solve.record import column_layout, peak_layout
 
 AXES = ["x", "y"]
 
@@ -86,6 +89,15 @@ def revolution_of(times: np.ndarray, period: float) -> np.ndarray:
     return np.ceil(times / period - 1e-9).astype(int).clip(min=0)
 
 
+def _peak_blocks(vector: np.ndarray, layout: dict) -> list[np.ndarray]:
+    """The PEAK quantities' blocks of a peak vector (or of rows of them: leading axes kept)."""
+    lead = vector.shape[:-1]
+    return [
+        vector[..., first : first + int(np.prod(block, dtype=int))].reshape((*lead, *block))
+        for first, block in layout.values()
+    ]
+
+
 def _revolution_peaks(
     rev_peaks: np.ndarray,
     rev_events: np.ndarray,
@@ -93,30 +105,26 @@ def _revolution_peaks(
     data: dict[str, np.ndarray],
     n_sections: int,
     period: float,
+    layout: dict,
 ) -> dict[str, np.ndarray]:
     """Per-revolution peaks over every accepted step (the integrator's `rev_peaks` rows) and
     every sample of the revolution, as the whole-run peaks are; the part after the last
     section (a fractional last revolution) is left out."""
-    nb = data["acceleration"].shape[1]
     steps = rev_peaks[:n_sections]
     sampled = np.concatenate(
-        [
-            np.abs(data["acceleration"]).reshape(len(times), 2 * nb),
-            np.abs(data["drive_torque"])[:, None],
-            data["normal_force"],
-        ],
-        axis=1,
+        [np.abs(data[q.source]).reshape(len(times), -1) for q in recorded(PEAK)], axis=1
     )
     rev = revolution_of(times, period)
     keep = rev < n_sections
     merged = steps.copy()
     np.maximum.at(merged, rev[keep], sampled[keep])
-    return {
-        "revolution_peak_acceleration": merged[:, : 2 * nb].reshape(n_sections, nb, 2),
-        "revolution_peak_drive_torque": merged[:, 2 * nb],
-        "revolution_peak_normal_force": merged[:, 2 * nb + 1 :],
-        "revolution_contact_events": rev_events[:n_sections].copy(),
+    out = {
+        q.name: block
+        for q, block in zip(recorded(REVOLUTION_PEAK), _peak_blocks(merged, layout), strict=True)
     }
+    (events,) = recorded(REVOLUTION_COUNT)
+    out[events.name] = rev_events[:n_sections].copy()
+    return out
 
 
 def build_dataset(
@@ -149,20 +157,11 @@ def build_dataset(
         ds[q.name] = (q.dims, data[q.name])
     for q in recorded(SECTION):
         ds[q.name] = (q.dims, sections[q.source])
-    nb = len(bodies)
-    step_acc = peaks[: 2 * nb].reshape(nb, 2)
-    ds["peak_acceleration"] = (
-        BY_NAME["peak_acceleration"].dims,
-        np.maximum(step_acc, np.abs(data["acceleration"]).max(axis=0)),
-    )
-    ds["peak_drive_torque"] = (
-        BY_NAME["peak_drive_torque"].dims,
-        max(peaks[2 * nb], float(np.abs(data["drive_torque"]).max())),
-    )
-    ds["peak_normal_force"] = (
-        BY_NAME["peak_normal_force"].dims,
-        np.maximum(peaks[2 * nb + 1 :], data["normal_force"].max(axis=0, initial=0.0)),
-    )
+    # the largest |value| over the accepted steps (integrator) and the samples
+    layout = peak_layout(len(bodies), len(joints))
+    for q, steps in zip(recorded(PEAK), _peak_blocks(peaks, layout), strict=True):
+        sampled = np.abs(data[q.source]).max(axis=0, initial=0.0)
+        ds[q.name] = (q.dims, np.maximum(steps, sampled))
     ds["energy_error"] = energy_balance(ds)  # dims ("time",), as sim.quantities declares
     if rev_peaks is not None and rev_events is not None:
         per_revolution = _revolution_peaks(
@@ -172,6 +171,7 @@ def build_dataset(
             data,
             section_rows.shape[0],
             float(provenance["crank_period"]),
+            layout,
         )
         for name, values in per_revolution.items():
             ds[name] = (BY_NAME[name].dims, values)

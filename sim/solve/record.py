@@ -19,7 +19,7 @@ from sim.model.system import (
     TJ_PX,
     TJ_PY,
 )
-from sim.quantities import SAMPLE, recorded, shape
+from sim.quantities import PEAK, SAMPLE, recorded, shape
 from sim.solve.dae import (
     SC_CONTACT_ENERGY,
     SC_DRIVE_TORQUE,
@@ -29,25 +29,37 @@ from sim.solve.dae import (
     rhs,
 )
 
+Layout = dict[str, tuple[int, tuple[int, ...]]]
 
-def column_layout(n_bodies: int, n_joints: int) -> dict[str, tuple[int, tuple[int, ...]]]:
-    """Name → (first column, shape per sample) of every sampled quantity (`sim.quantities`,
-    recorded SAMPLE), in the table's order, which `write_row` follows."""
+
+def _blocks(quantities, n_bodies: int, n_joints: int, leading: int) -> Layout:
+    """Name → (first column, shape) of consecutive blocks, one per quantity, in order; the
+    first `leading` dimensions (time) are not part of a block."""
     layout = {}
     col = 0
-    for q in recorded(SAMPLE):
-        per_sample = shape(q.dims[1:], n_bodies, n_joints)
-        layout[q.name] = (col, per_sample)
-        col += int(np.prod(per_sample, dtype=int))
+    for q in quantities:
+        block = shape(q.dims[leading:], n_bodies, n_joints)
+        layout[q.name] = (col, block)
+        col += int(np.prod(block, dtype=int))
     return layout
+
+
+def column_layout(n_bodies: int, n_joints: int) -> Layout:
+    """Name → (first column, shape per sample) of every sampled quantity (`sim.quantities`,
+    recorded SAMPLE), in the table's order, which `write_row` follows."""
+    return _blocks(recorded(SAMPLE), n_bodies, n_joints, leading=1)
 
 
 def row_width(n_bodies: int, n_joints: int) -> int:
     """Number of columns of one sample row."""
-    return sum(
-        int(np.prod(per_sample, dtype=int))
-        for _, per_sample in column_layout(n_bodies, n_joints).values()
-    )
+    return sum(int(np.prod(s, dtype=int)) for _, s in column_layout(n_bodies, n_joints).values())
+
+
+def peak_layout(n_bodies: int, n_joints: int) -> Layout:
+    """Name → (first entry, shape) of every PEAK quantity in the integrator's vector of peaks
+    (and in each row of its per-revolution peaks, the REVOLUTION_PEAK quantities in the same
+    order), which `sim.solve.stepping._update_peaks` fills in the table's order."""
+    return _blocks(recorded(PEAK), n_bodies, n_joints, leading=0)
 
 
 @kernel

@@ -13,7 +13,15 @@ these comparisons: every block is compared with a reference that differs from it
 import numpy as np
 import pytest
 
-from sim.quantities import SAMPLE, recorded
+from sim.quantities import (
+    BY_NAME,
+    PEAK,
+    QUANTITIES,
+    REVOLUTION_PEAK,
+    SAMPLE,
+    SECTION,
+    recorded,
+)
 
 R, L = 0.05, 0.20  # m: crank, rod
 OMEGA = 2 * np.pi * 300 / 60  # rad/s
@@ -83,10 +91,24 @@ def clearance(run):
     )
 
 
-def test_every_sampled_quantity_is_in_the_dataset_with_its_dims(ideal, clearance):
-    for q in recorded(SAMPLE):
-        assert ideal[q.name].dims == q.dims
-        assert clearance[q.name].dims == q.dims
+def test_the_table_is_consistent():
+    # A section or a peak is taken from a sampled quantity, over the same dimensions; the
+    # per-revolution peaks follow the peaks' order (they share the integrator's layout).
+    for q in QUANTITIES:
+        if q.recorded in (SECTION, PEAK, REVOLUTION_PEAK):
+            source = BY_NAME[q.source]
+            assert source.recorded == SAMPLE, q.name
+            lead = {SECTION: ("revolution",), PEAK: (), REVOLUTION_PEAK: ("revolution",)}
+            assert q.dims == lead[q.recorded] + source.dims[1:], q.name
+    assert [q.source for q in recorded(REVOLUTION_PEAK)] == [q.source for q in recorded(PEAK)]
+
+
+def test_a_run_file_holds_every_quantity_with_its_dims_and_attributes(ideal, clearance):
+    for ds in (ideal, clearance):
+        assert set(ds.data_vars) == {q.name for q in QUANTITIES}
+        for q in QUANTITIES:
+            assert ds[q.name].dims == q.dims, q.name
+            assert ds[q.name].attrs == {"units": q.units, "long_name": q.long_name}, q.name
     assert list(clearance.joint.values) == ["A", "B"]
 
 
