@@ -1,11 +1,13 @@
 """Every output quantity of a run, declared once: name, dimensions, units, long name and how
 it is recorded.
 
-The integrator's sample rows (`sim.solve.record.column_layout`, filled by
-`sim.solve.record.write_row`), the netCDF writer and decoder (`sim.results`) and the
+The integrator's sample rows and peak vector (`sim.solve.record.column_layout` and
+`peak_layout`, filled by the compiled `sim.solve.record.write_row` and
+`sim.solve.stepping._update_peaks`), the netCDF writer and decoder (`sim.results`) and the
 cross-check's output (`sim.crosscheck.run`) all follow this table. Adding an output quantity
-means one entry here and, for a sampled quantity, its line in `write_row`. Units are CF /
-UDUNITS strings (CF conventions 1.8).
+means one entry here and, for a sampled quantity, its line in `write_row` (a peak: its lines
+in `_update_peaks` and the peak count of `sim.run`). Units are CF / UDUNITS strings (CF
+conventions 1.8).
 """
 
 from typing import NamedTuple
@@ -18,7 +20,7 @@ REVOLUTION_PEAK = "revolution peak"  # as PEAK, over the revolution ending at ea
 REVOLUTION_COUNT = "revolution count"  # counted by the integrator in each revolution
 DERIVED = "derived"  # computed from other quantities when the dataset is built
 
-AXIS_SIZE = 2  # the `axis` dimension: x, y (translational joints: across, along the guide)
+AXES = ["x", "y"]  # the `axis` coordinate (translational joints: across, along the guide)
 
 
 class Quantity(NamedTuple):
@@ -267,7 +269,7 @@ def recorded(how: str) -> tuple[Quantity, ...]:
 def shape(dims: tuple[str, ...], n_bodies: int, n_joints: int) -> tuple[int, ...]:
     """Sizes of the dimensions `dims` (without `time` or `revolution`) for a system of
     n_bodies bodies and n_joints clearance joints."""
-    sizes = {"body": n_bodies, "joint": n_joints, "axis": AXIS_SIZE}
+    sizes = {"body": n_bodies, "joint": n_joints, "axis": len(AXES)}
     return tuple(sizes[d] for d in dims)
 
 

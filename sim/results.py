@@ -16,6 +16,7 @@ import xarray as xr
 from sim import __version__
 from sim.provenance import library_versions_json
 from sim.quantities import (
+    AXES,
     BY_NAME,
     COORDINATE_BY_NAME,
     PEAK,
@@ -28,8 +29,6 @@ from sim.quantities import (
 )
 from sim.scene import with_defaults
 from sim.solve.record import column_layout, peak_layout
-
-AXES = ["x", "y"]
 
 
 def decode_rows(rows: np.ndarray, bodies: list[str], joints: list[str]) -> dict[str, np.ndarray]:

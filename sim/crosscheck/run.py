@@ -30,7 +30,8 @@ import xarray as xr
 from sim import __version__
 from sim.crosscheck.model import CrossCheckError, ExudynModel, build_model
 from sim.model.assembly import crank_period
-from sim.results import AXES, annotate
+from sim.quantities import AXES
+from sim.results import annotate
 from sim.run import prepare, simulate
 
 SOLVERS = ("trapezoidal_index2", "generalized_alpha")
