@@ -17,8 +17,6 @@ and the driving torque (the paper's comparison with ADAMS). Three kinds of measu
   Exudyn's (|r'| − 1 strain, material curvature) change in the elastic forces at given states.
 """
 
-import json
-
 import numpy as np
 import xarray as xr
 from numpy.polynomial import Polynomial
@@ -26,6 +24,7 @@ from scipy import signal, stats
 
 from sim.model import ancf
 from sim.model.beams import hermite_shape
+from sim.results import scene_of
 
 SIGNALS = ("displacement", "velocity", "acceleration", "drive_torque")
 
@@ -33,7 +32,7 @@ SIGNALS = ("displacement", "velocity", "acceleration", "drive_torque")
 def slider_signals(ds: xr.Dataset) -> dict[str, np.ndarray]:
     """Slider displacement (m), velocity (m/s), acceleration (m/s²) along the guide of the
     scene's first translational joint, and the driving torque (N m)."""
-    scene = json.loads(ds.attrs["scene"])
+    scene = scene_of(ds)
     joint = next(j for j in scene["joints"].values() if j["type"] == "translational")
     angle = np.radians(joint["guide_angle_deg"])
     tangent = np.array([np.cos(angle), np.sin(angle)])

@@ -1,12 +1,11 @@
 """Slider and crank responses of a run against the ideal mechanism."""
 
-import json
-
 import numpy as np
 import xarray as xr
 from matplotlib.figure import Figure
 
 from sim.plots import style
+from sim.results import scene_of
 
 #: (variable, body or None, axis or None, title of the panel)
 PANELS = (
@@ -74,7 +73,7 @@ def plot_responses(run: xr.Dataset, ideal: xr.Dataset, *, revolutions: float = 2
 
 
 def _title(run: xr.Dataset) -> str:
-    scene = json.loads(run.attrs["scene"])
+    scene = scene_of(run)
     joints = [
         f"{name} {joint['clearance'] * 1e3:g} mm"
         for name, joint in scene["joints"].items()

@@ -1,7 +1,5 @@
 """Tables of the workflow (peak values, work–precision, extremes) and their figures."""
 
-import json
-
 import numpy as np
 import pandas as pd
 import xarray as xr
@@ -9,6 +7,7 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import FuncFormatter, NullFormatter
 
 from sim.plots import style
+from sim.results import scene_of
 from sim.studies import fidelity
 
 
@@ -19,7 +18,7 @@ def peaks_table(cases: list[str], runs: list[xr.Dataset], ideals: list[xr.Datase
     revolution and the solver's wall time per simulated second."""
     rows = []
     for case, run, ideal in zip(cases, runs, ideals, strict=True):
-        scene = json.loads(run.attrs["scene"])
+        scene = scene_of(run)
         revolutions = float(run.attrs["simulated_time_s"]) / float(run.attrs["crank_period"])
         acc = float(run.peak_acceleration.sel(body="slider", axis="y"))
         acc_ideal = float(ideal.peak_acceleration.sel(body="slider", axis="y"))
@@ -48,7 +47,7 @@ def peaks_table(cases: list[str], runs: list[xr.Dataset], ideals: list[xr.Datase
 def _setting(case: str, run: xr.Dataset) -> dict:
     """What a run of the fidelity study was: integrator, tolerances, link model, clearances,
     duration and output rate, and what it cost (integrator wall time in s, real-time factor)."""
-    scene = json.loads(run.attrs["scene"])
+    scene = scene_of(run)
     elements = sorted({b["elements"] for b in scene["bodies"].values() if b["kind"] == "beam"})
     clearances = [name for name, joint in scene["joints"].items() if joint["clearance"] > 0]
     return {

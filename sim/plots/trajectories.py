@@ -1,12 +1,11 @@
 """Centre trajectories of clearance joints inside their clearance circle or band."""
 
-import json
-
 import numpy as np
 import xarray as xr
 from matplotlib.figure import Figure
 
 from sim.plots import style
+from sim.results import scene_of
 
 MM = 1e3
 
@@ -16,7 +15,7 @@ def plot_trajectories(run: xr.Dataset) -> Figure:
     journal centre relative to its bearing, x against y, inside the circle of radius equal to
     the radial clearance; the slider of a translational joint, its offset across the guide (x)
     against its position along the guide (y), inside the band |x| ≤ clearance."""
-    scene = json.loads(run.attrs["scene"])
+    scene = scene_of(run)
     joints = [str(j) for j in run.joint.values]
     with style.style():
         n = max(len(joints), 1)

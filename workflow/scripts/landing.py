@@ -13,6 +13,7 @@ import xarray as xr
 
 from sim.analysis.revolutions import Bootstrap
 from sim.claims import judge_all
+from sim.results import scene_of
 
 
 def main(sm) -> None:
@@ -24,7 +25,7 @@ def main(sm) -> None:
     scene, assumptions, versions = {}, [], {}
     if "flagship_run" in inp:
         with xr.open_dataset(inp["flagship_run"]) as ds:
-            scene = json.loads(ds.attrs["scene"])
+            scene = scene_of(ds)
             assumptions = json.loads(ds.attrs["assumptions"])
             versions = {"sim": ds.attrs["sim_version"]} | json.loads(
                 ds.attrs.get("library_versions", "{}")
