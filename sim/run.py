@@ -81,7 +81,6 @@ class Integration:
 
     system: System
     layout: Layout
-    method: str  # solver.method
     work: Work
     carry: Carry
     trajectory: Trajectory
@@ -201,7 +200,6 @@ def prepare(
     integ = Integration(
         system=system,
         layout=layout,
-        method=solver["method"],
         work=make_work(system),
         carry=make_carry(system.n, system.m),
         trajectory=Trajectory(y=y, mem=mem, clock=clock),
