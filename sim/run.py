@@ -99,6 +99,16 @@ class Integration:
         return self.trajectory.mem
 
     @property
+    def out_t(self) -> np.ndarray:
+        """The output sample times (s)."""
+        return self.buffers.out_t
+
+    @property
+    def sec_t(self) -> np.ndarray:
+        """The Poincaré section times (s), one per crank revolution from t = 0."""
+        return self.buffers.sec_t
+
+    @property
     def t(self) -> float:
         """The time reached (s)."""
         return float(self.trajectory.clock[0]["t"])
