@@ -47,15 +47,15 @@ def run(method: str, revolutions: float, scene_sets: list[str]) -> dict:
 
 
 @numba.njit
-def _time_residual(system, work, mem, q, v, count):
+def _time_residual(system, work, carry, mem, q, v, count):
     for _ in range(count):
-        galpha._residual(system, work, mem, 0.0, q, v, work.ga_xdd, work.ga_lam, 1e-9, 1e-6, 1e-8)
+        galpha._residual(system, work, mem, 0.0, q, v, carry.xdd, carry.lam, 1e-9, 1e-6, 1e-8)
 
 
 @numba.njit
 def _time_rhs(system, work, mem, y, count):
     for _ in range(count):
-        dae.rhs(system, work, mem, 0.0, y, work.stages[6])
+        dae.rhs(system, work, mem, 0.0, y, work.ydot_end)
 
 
 @numba.njit
@@ -66,30 +66,33 @@ def _time_forces(system, work, mem, q, v, count):
 
 
 @numba.njit
-def _time_matrix(system, work, mem, q, v, count):
+def _time_matrix(system, work, carry, mem, q, v, count):
     for _ in range(count):
-        tangent.iteration_matrix(system, work, mem, 0.0, q, v, 1.0, 1e-5, 1e-9)
-        linalg.lu_in_place(work.it_mat, work.it_piv)
+        tangent.iteration_matrix(system, work, carry.it_mat, mem, 0.0, q, v, 1.0, 1e-5, 1e-9)
+        linalg.lu_in_place(carry.it_mat, carry.it_piv)
 
 
 @numba.njit
-def _time_solve(work, count):
+def _time_solve(work, carry, count):
     for _ in range(count):
-        linalg.lu_solve_in_place(work.it_mat, work.it_piv, work.it_rhs)
+        linalg.lu_solve_in_place(carry.it_mat, carry.it_piv, work.it_rhs)
 
 
 def kernel_costs() -> dict[str, float]:
     """Microseconds per call of the kernels one implicit step is made of."""
     integ = prepare(load_scene("sixbar", FLAGSHIP))
-    system, work, mem, y = integ.system, integ.work, integ.mem, integ.y
+    system, work, carry, mem, y = integ.system, integ.work, integ.carry, integ.mem, integ.y
     n = system.n
     q, v = y[:n].copy(), y[n : 2 * n].copy()
     cases = {
         "forces + constraints (one evaluation)": (_time_forces, (system, work, mem, q, v)),
-        "Newton residual (evaluation + M q̈ + Φ_qᵀλ)": (_time_residual, (system, work, mem, q, v)),
+        "Newton residual (evaluation + M q̈ + Φ_qᵀλ)": (
+            _time_residual,
+            (system, work, carry, mem, q, v),
+        ),
         "equations of motion at the step's end (rhs)": (_time_rhs, (system, work, mem, y)),
-        "iteration matrix + LU factorisation": (_time_matrix, (system, work, mem, q, v)),
-        "LU solve": (_time_solve, (work,)),
+        "iteration matrix + LU factorisation": (_time_matrix, (system, work, carry, mem, q, v)),
+        "LU solve": (_time_solve, (work, carry)),
     }
     out = {}
     for name, (kernel, args) in cases.items():
@@ -111,10 +114,11 @@ def natural_frequencies(sets: list[str]) -> np.ndarray:
     n = system.n
     q, v = y[:n].copy(), np.zeros(n)
     constraint_terms(system, 0.0, q, v, work.phi, work.jac, work.gamma, work.nu)
-    tangent.iteration_matrix(system, work, mem, 0.0, q, v, 1.0, 0.0, 0.0)
-    mass = work.it_mat[:n, :n].copy()
-    tangent.iteration_matrix(system, work, mem, 0.0, q, v, 0.0, 0.0, 1.0)
-    stiffness = work.it_mat[:n, :n].copy()
+    mat = integ.carry.it_mat
+    tangent.iteration_matrix(system, work, mat, mem, 0.0, q, v, 1.0, 0.0, 0.0)
+    mass = mat[:n, :n].copy()
+    tangent.iteration_matrix(system, work, mat, mem, 0.0, q, v, 0.0, 0.0, 1.0)
+    stiffness = mat[:n, :n].copy()
     basis = scipy.linalg.null_space(work.jac)
     omega2 = scipy.linalg.eigh(
         basis.T @ stiffness @ basis, basis.T @ mass @ basis, eigvals_only=True

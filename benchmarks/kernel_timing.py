@@ -24,8 +24,9 @@ from sim.model.clearance import revolute_clearance_forces, translational_clearan
 from sim.model.constraints import constraint_terms
 from sim.run import prepare
 from sim.scene import load_scene
-from sim.solve.dae import OK, generalized_forces, rhs
+from sim.solve.dae import generalized_forces, rhs
 from sim.solve.linalg import cholesky_in_place, cholesky_solve_in_place
+from sim.solve.status import OK
 
 CASE = ["joints.A.clearance=0.5e-3", "joints.B.clearance=0.5e-3", "solver.rtol=1e-6"]
 

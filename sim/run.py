@@ -27,8 +27,19 @@ from sim.model.system import (
 )
 from sim.results import build_dataset, decode_rows, energy_balance, energy_error_relative
 from sim.solve import stepping
-from sim.solve.dae import NONFINITE, SINGULAR, make_work, state_size
+from sim.solve.dae import Work, make_work, state_size
+from sim.solve.methods import Dopri5, method_of
 from sim.solve.record import record_row, row_width
+from sim.solve.state import CLOCK, TALLY, Buffers, Carry, Options, Trajectory, make_carry
+from sim.solve.status import (
+    MAX_STEPS,
+    NONFINITE,
+    OK,
+    PENETRATION,
+    SINGULAR,
+    STEP_COLLAPSE,
+    VIOLATION,
+)
 
 
 class SimulationError(RuntimeError):
@@ -46,49 +57,92 @@ VIOLATION_BOUND = 0.01  # of the shortest body dimension, m
 ENERGY_BOUND = 0.5
 
 
+@dataclass(frozen=True)
+class Snapshot:
+    """A restart point of an integration: copies of its trajectory (state, contact memory,
+    clock) and, unless None, of the step data carried to the next step. Restored with the
+    carried data (Newton factors included), an integration continues bit for bit as if never
+    interrupted; without, it re-evaluates the derivative and the generalized-α start data at
+    the restart (needed after the state was changed, as by a renormalisation) and keeps the
+    Newton factors it holds (they only speed Newton up)."""
+
+    trajectory: Trajectory
+    carry: Carry | None
+
+
+def _copied(structure):
+    """A NamedTuple of arrays with every array copied."""
+    return type(structure)(*(np.copy(a) for a in structure))
+
+
 @dataclass
 class Integration:
     """Everything the compiled integrator reads and writes for one run."""
 
     system: System
     layout: Layout
-    work: object
-    mem: np.ndarray
-    y: np.ndarray
-    st: np.ndarray
-    opts: np.ndarray
-    out_t: np.ndarray
-    out_rows: np.ndarray
-    sec_t: np.ndarray
-    sec_rows: np.ndarray
-    peaks: np.ndarray
-    rev_peaks: np.ndarray
-    rev_events: np.ndarray
-    pen_bound: np.ndarray
-    stats: np.ndarray
-    diag: np.ndarray
+    work: Work
+    carry: Carry
+    trajectory: Trajectory
+    options: Options
+    buffers: Buffers
+    tally: np.ndarray  # (1,) TALLY
+
+    @property
+    def y(self) -> np.ndarray:
+        """The state (q, q̇, W_drive, E_dissipated)."""
+        return self.trajectory.y
+
+    @property
+    def mem(self) -> np.ndarray:
+        """The contact memory, one row per gap."""
+        return self.trajectory.mem
+
+    @property
+    def out_t(self) -> np.ndarray:
+        """The output sample times (s)."""
+        return self.buffers.out_t
+
+    @property
+    def sec_t(self) -> np.ndarray:
+        """The Poincaré section times (s), one per crank revolution from t = 0."""
+        return self.buffers.sec_t
+
+    @property
+    def t(self) -> float:
+        """The time reached (s)."""
+        return float(self.trajectory.clock[0]["t"])
+
+    def count(self, name: str) -> int:
+        """A counter of the run (a field of sim.solve.state.TALLY)."""
+        return int(self.tally[0][name])
 
     def advance(self, t_end: float) -> int:
-        """Integrate up to t_end; the status code of the compiled integrator."""
+        """Integrate up to t_end; the status code (sim.solve.status) of the compiled integrator."""
         return stepping.integrate(
             self.system,
             self.work,
-            self.mem,
-            self.y,
-            self.st,
+            self.carry,
+            self.trajectory,
             t_end,
-            self.opts,
-            self.out_t,
-            self.out_rows,
-            self.sec_t,
-            self.sec_rows,
-            self.peaks,
-            self.rev_peaks,
-            self.rev_events,
-            self.pen_bound,
-            self.stats,
-            self.diag,
+            self.options,
+            self.buffers,
+            self.tally,
         )
+
+    def snapshot(self, carried: bool = True) -> Snapshot:
+        """A restart point at the time reached; with `carried`, one that resumes exactly."""
+        return Snapshot(_copied(self.trajectory), _copied(self.carry) if carried else None)
+
+    def restore(self, snapshot: Snapshot) -> None:
+        """Return to a restart point (see Snapshot). Counters and buffers are not rewound."""
+        for mine, saved in zip(self.trajectory, snapshot.trajectory, strict=True):
+            mine[...] = saved
+        if snapshot.carry is None:
+            self.trajectory.clock[0]["started"] = False
+        else:
+            for mine, saved in zip(self.carry, snapshot.carry, strict=True):
+                mine[...] = saved
 
 
 def _shortest_dimension(scene: dict) -> float:
@@ -125,32 +179,25 @@ def prepare(
     # |acceleration| of each body's reference point (x, y), |drive torque|, each joint's force
     n_peaks = 2 * len(layout.bodies) + 1 + len(layout.clearance_joints)
     solver = scene["solver"]
-    opts = np.zeros(stepping.N_OPTS)
-    opts[stepping.OPT_RTOL] = solver["rtol"]
-    opts[stepping.OPT_ATOL] = solver["atol"]
-    opts[stepping.OPT_HMAX] = solver["max_step_fraction"] * period
-    opts[stepping.OPT_HMIN] = 1e-14 * period
-    opts[stepping.OPT_VIOLATION_BOUND] = VIOLATION_BOUND * _shortest_dimension(scene)
-    opts[stepping.OPT_MAX_STEPS] = solver["max_steps"]
-    opts[stepping.OPT_METHOD] = stepping.METHODS[solver["method"]]
-    opts[stepping.OPT_RHO_INF] = solver["rho_inf"]
-    pen_bound = np.concatenate(
-        [
-            PENETRATION_BOUND * system.rj_f[:, RJ_JOURNAL_RADIUS],
-            PENETRATION_BOUND * system.tj_f[:, TJ_WIDTH],
-        ]
+    options = Options(
+        method=method_of(solver),
+        rtol=float(solver["rtol"]),
+        atol=float(solver["atol"]),
+        hmax=solver["max_step_fraction"] * period,
+        hmin=1e-14 * period,
+        violation_bound=VIOLATION_BOUND * _shortest_dimension(scene),
+        max_steps=int(solver["max_steps"]),
+        pen_bound=np.concatenate(
+            [
+                PENETRATION_BOUND * system.rj_f[:, RJ_JOURNAL_RADIUS],
+                PENETRATION_BOUND * system.tj_f[:, TJ_WIDTH],
+            ]
+        ),
     )
-    st = np.zeros(stepping.N_ST)
-    st[stepping.ST_H] = min(1e-5 * period, opts[stepping.OPT_HMAX])
-    st[stepping.ST_FACOLD] = 1e-4
-    integ = Integration(
-        system=system,
-        layout=layout,
-        work=make_work(system),
-        mem=mem,
-        y=y,
-        st=st,
-        opts=opts,
+    clock = np.zeros(1, dtype=CLOCK)
+    clock[0]["h"] = min(1e-5 * period, options.hmax)
+    clock[0]["facold"] = 1e-4
+    buffers = Buffers(
         out_t=out_t,
         out_rows=np.zeros((n_out, width)),
         sec_t=sec_t,
@@ -159,15 +206,22 @@ def prepare(
         # one row per revolution (ending at each section), one more for what follows the last
         rev_peaks=np.zeros((sec_t.size + 1, n_peaks)),
         rev_events=np.zeros(sec_t.size + 1, dtype=np.int64),
-        pen_bound=pen_bound,
-        stats=np.zeros(stepping.N_STATS, dtype=np.int64),
-        diag=np.zeros(2),
+    )
+    integ = Integration(
+        system=system,
+        layout=layout,
+        work=make_work(system),
+        carry=make_carry(system.n, system.m),
+        trajectory=Trajectory(y=y, mem=mem, clock=clock),
+        options=options,
+        buffers=buffers,
+        tally=np.zeros(1, dtype=TALLY),
     )
     # The integrator samples times in (t, t + h]; t = 0 is recorded here.
     assert state_size(system) == y.size
-    for rows, slot in ((integ.out_rows, stepping.S_OUT), (integ.sec_rows, stepping.S_SEC)):
+    for rows, count in ((buffers.out_rows, "outputs"), (buffers.sec_rows, "sections")):
         record_row(system, integ.work, integ.mem, 0.0, y, rows[0])
-        integ.stats[slot] = 1
+        integ.tally[0][count] = 1
     return integ
 
 
@@ -186,13 +240,13 @@ class EnergyWatch:
     def __init__(self, integ: Integration):
         self.integ = integ
         self.done = 0
-        self.kept = integ.out_rows[:0]
+        self.kept = integ.buffers.out_rows[:0]
 
     def audit(self) -> float:
         """The energy audit (share of the energy scale) of every sample recorded so far."""
         integ = self.integ
-        upto = int(integ.stats[stepping.S_OUT])
-        rows = np.concatenate([self.kept, integ.out_rows[self.done : upto]])
+        upto = integ.count("outputs")
+        rows = np.concatenate([self.kept, integ.buffers.out_rows[self.done : upto]])
         self.done = upto
         data = decode_rows(rows, integ.layout.bodies, integ.layout.clearance_joints)
         setting = {
@@ -215,31 +269,31 @@ class EnergyWatch:
         integ = self.integ
         busiest = _busiest_joint(integ)
         where = f" (largest contact force at joint '{busiest}')" if busiest else ""
-        method = integ.opts[stepping.OPT_METHOD]
         hint = (
             "tighten solver.rtol"
-            if method == stepping.METHOD_DOPRI5
+            if isinstance(integ.options.method, Dopri5)
             else (
                 "the implicit method passed a stiff contact with a wrong velocity: tighten "
                 "solver.rtol or use solver.method=dopri5"
             )
         )
         return (
-            f"by t = {integ.out_t[self.done - 1]:.6g} s the energy audit is off by {audit:.3g} "
-            f"of the energy scale (bound {ENERGY_BOUND}){where}: a step created or lost "
-            f"energy; {hint}"
+            f"by t = {integ.buffers.out_t[self.done - 1]:.6g} s the energy audit is off by "
+            f"{audit:.3g} of the energy scale (bound {ENERGY_BOUND}){where}: a step created or "
+            f"lost energy; {hint}"
         )
 
 
 def diagnose(integ: Integration, status: int) -> str:
     """A failure message: the time, the joint and the likely cause."""
-    t = integ.diag[stepping.D_TIME]
+    tally = integ.tally[0]
+    t = tally["failure_time"]
     joints = integ.layout.clearance_joints
     jout = integ.work.jout
     busiest = _busiest_joint(integ)
     at = f"at t = {t:.6g} s"
-    if status == stepping.PENETRATION:
-        j = int(integ.stats[stepping.S_CULPRIT])
+    if status == PENETRATION:
+        j = int(tally["culprit"])
         hint = ""
         is_slider = j >= integ.system.rj_pts.shape[0]
         if is_slider and integ.system.contact[CT_SLIDER_LAW] == SLIDER_LAW_PAPER:
@@ -250,30 +304,27 @@ def diagnose(integ: Integration, status: int) -> str:
             )
         return (
             f"{at}: joint '{joints[j]}' penetrates {jout[j, 0]:.3g} m, beyond the sane bound "
-            f"{integ.pen_bound[j]:.3g} m ({PENETRATION_BOUND:.0%} of its size): the contact is too "
-            f"soft for the load, or the clearance law met a velocity it cannot stop{hint}"
+            f"{integ.options.pen_bound[j]:.3g} m ({PENETRATION_BOUND:.0%} of its size): the "
+            f"contact is too soft for the load, or the clearance law met a velocity it cannot "
+            f"stop{hint}"
         )
-    if status == stepping.VIOLATION:
+    if status == VIOLATION:
         return (
-            f"{at}: ideal constraints drifted beyond "
-            f"{integ.opts[stepping.OPT_VIOLATION_BOUND]:.3g} m; "
+            f"{at}: ideal constraints drifted beyond {integ.options.violation_bound:.3g} m; "
             "the mechanism may pass a singular (locked) position; raise solver.baumgarte_* or "
             "tighten solver.rtol"
         )
-    if status == stepping.STEP_COLLAPSE:
+    if status == STEP_COLLAPSE:
         where = f"; the largest contact force is at joint '{busiest}'" if busiest else ""
-        if integ.opts[stepping.OPT_METHOD] == stepping.METHOD_DOPRI5:
+        if isinstance(integ.options.method, Dopri5):
             cause = "a force discontinuity or stiffness the explicit method cannot pass"
         else:
-            failures = int(integ.stats[stepping.S_NEWTON_FAILURES])
+            failures = int(tally["newton_failures"])
             cause = (
                 f"Newton failed {failures} times in the run: a force law the implicit "
                 "method cannot converge on (try solver.method=dopri5 or a smaller solver.rtol)"
             )
-        return (
-            f"{at}: the step size collapsed below {integ.opts[stepping.OPT_HMIN]:.3g} s{where}: "
-            + cause
-        )
+        return f"{at}: the step size collapsed below {integ.options.hmin:.3g} s{where}: " + cause
     if status == SINGULAR:
         return (
             f"{at}: the constraint Jacobian lost rank: redundant joints or a locked "
@@ -282,8 +333,8 @@ def diagnose(integ: Integration, status: int) -> str:
     if status == NONFINITE:
         where = f" (largest contact force at joint '{busiest}')" if busiest else ""
         return f"{at}: the state became non-finite{where}: the step outran a stiff force"
-    if status == stepping.MAX_STEPS:
-        return f"{at}: solver.max_steps = {int(integ.opts[stepping.OPT_MAX_STEPS])} reached"
+    if status == MAX_STEPS:
+        return f"{at}: solver.max_steps = {integ.options.max_steps} reached"
     return f"{at}: integrator status {status}"
 
 
@@ -367,32 +418,32 @@ def simulate_from(
     while t < t_end:
         t = min(t + chunk, t_end)
         status = integ.advance(t)
-        failure = diagnose(integ, status) if status != stepping.OK else watch.drift()
+        failure = diagnose(integ, status) if status != OK else watch.drift()
         if failure is not None:
             bar.close()
             raise SimulationError(f"scene '{scene['name']}': " + failure)
         bar.update(t)
     bar.close()
     wall = time.perf_counter() - wall0
-    recorded = (int(integ.stats[stepping.S_OUT]), int(integ.stats[stepping.S_SEC]))
-    if recorded != (integ.out_t.size, integ.sec_t.size):
+    buffers = integ.buffers
+    recorded = (integ.count("outputs"), integ.count("sections"))
+    if recorded != (buffers.out_t.size, buffers.sec_t.size):
         raise SimulationError(
             f"scene '{scene['name']}': the integrator recorded {recorded} of "
-            f"{(integ.out_t.size, integ.sec_t.size)} samples and sections"
+            f"{(buffers.out_t.size, buffers.sec_t.size)} samples and sections"
         )
-    stats = integ.stats
     provenance = {
         "history": f"{datetime.datetime.now(datetime.UTC).isoformat()} sim simulate",
         "crank_period": period,
         "model_ideal": int(ideal),
         "model_rigid": int(rigid),
         "solver_method": scene["solver"]["method"],
-        "solver_accepted_steps": int(stats[stepping.S_ACCEPTED]),
-        "solver_rejected_steps": int(stats[stepping.S_REJECTED]),
-        "solver_function_evaluations": int(stats[stepping.S_NFEV]),
-        "solver_contact_events": int(stats[stepping.S_EVENTS]),
-        "solver_iteration_matrices": int(stats[stepping.S_JACOBIANS]),
-        "solver_newton_failures": int(stats[stepping.S_NEWTON_FAILURES]),
+        "solver_accepted_steps": integ.count("accepted"),
+        "solver_rejected_steps": integ.count("rejected"),
+        "solver_function_evaluations": integ.count("evaluations"),
+        "solver_contact_events": integ.count("events"),
+        "solver_iteration_matrices": integ.count("jacobians"),
+        "solver_newton_failures": integ.count("newton_failures"),
         "solver_wall_time_s": wall,
         "real_time_factor": t_end / wall if wall > 0 else float("inf"),
         "simulated_time_s": t_end,
@@ -410,12 +461,12 @@ def simulate_from(
         layout=integ.layout,
     )
     dataset = build_dataset(
-        times=integ.out_t,
-        rows=integ.out_rows,
-        section_rows=integ.sec_rows,
-        peaks=integ.peaks,
-        rev_peaks=integ.rev_peaks,
-        rev_events=integ.rev_events,
+        times=buffers.out_t,
+        rows=buffers.out_rows,
+        section_rows=buffers.sec_rows,
+        peaks=buffers.peaks,
+        rev_peaks=buffers.rev_peaks,
+        rev_events=buffers.rev_events,
         bodies=integ.layout.bodies,
         joints=integ.layout.clearance_joints,
         scene=scene,

@@ -33,16 +33,15 @@ from sim.model.system import (
     n_gaps,
 )
 from sim.solve.linalg import cholesky_in_place, cholesky_solve_in_place
-
-# Status codes of a right-hand side evaluation and of the integrator.
-OK, SINGULAR, NONFINITE = 0, 1, 2
+from sim.solve.status import NONFINITE, OK, SINGULAR
 
 # Scalars a right-hand side evaluation leaves behind, indices into Work.scalars.
 SC_DRIVE_TORQUE, SC_DISSIPATED_POWER, SC_CONTACT_ENERGY, SC_STRAIN_ENERGY = range(4)
 
 
 class Work(NamedTuple):
-    """Scratch arrays owned by one simulation; the compiled loop allocates nothing."""
+    """Scratch arrays owned by one simulation; the compiled loop allocates nothing. Nothing
+    here outlives a step: what one step hands to the next is `sim.solve.state.Carry`."""
 
     phi: np.ndarray  # (m,) constraint values
     jac: np.ndarray  # (m, n) Φ_q
@@ -57,7 +56,8 @@ class Work(NamedTuple):
     jout: np.ndarray  # (joints, N_JOINT_OUT) per clearance joint outputs
     scalars: np.ndarray  # (4,) see SC_*
     scratch: np.ndarray  # (n,) scratch: beam forces, momenta
-    stages: np.ndarray  # (7, ny) Runge–Kutta stages
+    stages: np.ndarray  # (5, ny) DOPRI5's stages k2…k6 (k1 is Carry.derivative)
+    ydot_end: np.ndarray  # (ny,) ẏ at the step's end (DOPRI5's k7, FSAL)
     ytmp: np.ndarray  # (ny,)
     ynew: np.ndarray  # (ny,)
     yint: np.ndarray  # (ny,) interpolated state of an output sample
@@ -67,16 +67,10 @@ class Work(NamedTuple):
     jac_ncols: np.ndarray  # (m,) how many
     col_block: np.ndarray  # (n,) the mass block of each coordinate
     # The implicit method (sim.solve.galpha, sim.solve.tangent):
-    it_mat: np.ndarray  # (n + m, n + m) Newton iteration matrix, then its LU factors
-    it_piv: np.ndarray  # (n + m,) pivots
     it_rhs: np.ndarray  # (n + m,) Newton right-hand side, then the correction
-    it_fresh: np.ndarray  # (1,) 1 while the factors in it_mat are usable, else 0
-    ga_acc: np.ndarray  # (n,) pseudo-acceleration a_n at the step's start
-    ga_acc_new: np.ndarray  # (n,) a_{n+1}
-    ga_xdd: np.ndarray  # (n,) the method's own q̈_n
-    ga_xdd_new: np.ndarray  # (n,) its q̈_{n+1}
-    ga_lam: np.ndarray  # (m,) multipliers λ_n
-    ga_lam_new: np.ndarray  # (m,) λ_{n+1}
+    ga_acc_new: np.ndarray  # (n,) pseudo-acceleration a_{n+1} at the step's end
+    ga_xdd_new: np.ndarray  # (n,) the method's own q̈_{n+1}
+    ga_lam_new: np.ndarray  # (m,) multipliers λ_{n+1}
     beam_kq: np.ndarray  # (s, s) one beam's stiffness Jacobian, s its largest size
     beam_kv: np.ndarray  # (s, s) one beam's damping Jacobian
     fd_base: np.ndarray  # (n,) contact forces at the unperturbed state
@@ -143,7 +137,8 @@ def make_work(system: System) -> Work:
         jout=np.zeros((n_clearance_joints(system), N_JOINT_OUT)),
         scalars=np.zeros(4),
         scratch=np.zeros(n),
-        stages=np.zeros((7, ny)),
+        stages=np.zeros((5, ny)),
+        ydot_end=np.zeros(ny),
         ytmp=np.zeros(ny),
         ynew=np.zeros(ny),
         yint=np.zeros(ny),
@@ -152,15 +147,9 @@ def make_work(system: System) -> Work:
         jac_cols=jac_cols,
         jac_ncols=jac_ncols,
         col_block=col_block,
-        it_mat=np.zeros((n + m, n + m)),
-        it_piv=np.zeros(n + m, dtype=np.int64),
         it_rhs=np.zeros(n + m),
-        it_fresh=np.zeros(1),
-        ga_acc=np.zeros(n),
         ga_acc_new=np.zeros(n),
-        ga_xdd=np.zeros(n),
         ga_xdd_new=np.zeros(n),
-        ga_lam=np.zeros(m),
         ga_lam_new=np.zeros(m),
         beam_kq=np.zeros((beam_size, beam_size)),
         beam_kv=np.zeros((beam_size, beam_size)),

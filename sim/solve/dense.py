@@ -12,11 +12,10 @@ from sim.jit import kernel
 
 
 @kernel
-def hermite_coefficients(work, y: np.ndarray, h: float) -> None:
+def hermite_coefficients(work, y: np.ndarray, k0: np.ndarray, h: float) -> None:
     """d0…d3 of the cubic Hermite interpolant of y (start), work.ynew (end) and
-    their derivatives work.stages[0] and work.stages[6]; d4 = 0."""
-    k0 = work.stages[0]
-    k6 = work.stages[6]
+    their derivatives k0 and work.ydot_end; d4 = 0."""
+    k6 = work.ydot_end
     d = work.dense
     yn = work.ynew
     for i in range(y.shape[0]):

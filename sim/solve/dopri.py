@@ -10,8 +10,10 @@ and the code DOPRI5). The loop around it (events, sampling, step control) is
 import numpy as np
 
 from sim.jit import kernel
-from sim.solve.dae import OK, rhs
-from sim.solve.dense import hermite_coefficients
+from sim.solve.dae import rhs
+from sim.solve.dense import hermite_coefficients, interpolate
+from sim.solve.record import record_row
+from sim.solve.status import OK
 
 # Dormand–Prince tableau.
 C2, C3, C4, C5 = 0.2, 0.3, 0.8, 8.0 / 9.0
@@ -33,85 +35,119 @@ EXPO1 = 0.2 - BETA * 0.75
 
 
 @kernel
-def _stages(sys, work, mem, t: float, h: float, y: np.ndarray) -> int:
-    """Stages 2–7 from k1 = work.stages[0]; the new state into work.ynew."""
-    k = work.stages
+def _stages(sys, work, mem, t: float, h: float, y: np.ndarray, k1: np.ndarray) -> int:
+    """Stages k2…k7 from k1; the new state into work.ynew, k7 = its derivative into
+    work.ydot_end."""
+    k2 = work.stages[0]
+    k3 = work.stages[1]
+    k4 = work.stages[2]
+    k5 = work.stages[3]
+    k6 = work.stages[4]
+    k7 = work.ydot_end
     yt = work.ytmp
     yn = work.ynew
     ny = y.shape[0]
     for i in range(ny):
-        yt[i] = y[i] + h * A21 * k[0, i]
-    s = rhs(sys, work, mem, t + C2 * h, yt, k[1])
+        yt[i] = y[i] + h * A21 * k1[i]
+    s = rhs(sys, work, mem, t + C2 * h, yt, k2)
     if s != OK:
         return s
     for i in range(ny):
-        yt[i] = y[i] + h * (A31 * k[0, i] + A32 * k[1, i])
-    s = rhs(sys, work, mem, t + C3 * h, yt, k[2])
+        yt[i] = y[i] + h * (A31 * k1[i] + A32 * k2[i])
+    s = rhs(sys, work, mem, t + C3 * h, yt, k3)
     if s != OK:
         return s
     for i in range(ny):
-        yt[i] = y[i] + h * (A41 * k[0, i] + A42 * k[1, i] + A43 * k[2, i])
-    s = rhs(sys, work, mem, t + C4 * h, yt, k[3])
+        yt[i] = y[i] + h * (A41 * k1[i] + A42 * k2[i] + A43 * k3[i])
+    s = rhs(sys, work, mem, t + C4 * h, yt, k4)
     if s != OK:
         return s
     for i in range(ny):
-        yt[i] = y[i] + h * (A51 * k[0, i] + A52 * k[1, i] + A53 * k[2, i] + A54 * k[3, i])
-    s = rhs(sys, work, mem, t + C5 * h, yt, k[4])
+        yt[i] = y[i] + h * (A51 * k1[i] + A52 * k2[i] + A53 * k3[i] + A54 * k4[i])
+    s = rhs(sys, work, mem, t + C5 * h, yt, k5)
     if s != OK:
         return s
     for i in range(ny):
-        yt[i] = y[i] + h * (
-            A61 * k[0, i] + A62 * k[1, i] + A63 * k[2, i] + A64 * k[3, i] + A65 * k[4, i]
-        )
-    s = rhs(sys, work, mem, t + h, yt, k[5])
+        yt[i] = y[i] + h * (A61 * k1[i] + A62 * k2[i] + A63 * k3[i] + A64 * k4[i] + A65 * k5[i])
+    s = rhs(sys, work, mem, t + h, yt, k6)
     if s != OK:
         return s
     for i in range(ny):
-        yn[i] = y[i] + h * (
-            A71 * k[0, i] + A73 * k[2, i] + A74 * k[3, i] + A75 * k[4, i] + A76 * k[5, i]
-        )
-    return rhs(sys, work, mem, t + h, yn, k[6])
+        yn[i] = y[i] + h * (A71 * k1[i] + A73 * k3[i] + A74 * k4[i] + A75 * k5[i] + A76 * k6[i])
+    return rhs(sys, work, mem, t + h, yn, k7)
 
 
 @kernel
-def _error_norm(work, y: np.ndarray, h: float, n2: int, rtol: float, atol: float) -> float:
+def _error_norm(work, y: np.ndarray, k1, h: float, n2: int, rtol: float, atol: float) -> float:
     """RMS of the embedded error estimate over q and q̇, scaled by atol + rtol·|y|.
     The energy quadratures are left out: they follow the motion's accuracy."""
-    k = work.stages
+    k3, k4, k5, k6 = work.stages[1], work.stages[2], work.stages[3], work.stages[4]
+    k7 = work.ydot_end
     yn = work.ynew
     total = 0.0
     for i in range(n2):
-        e = h * (
-            E1 * k[0, i] + E3 * k[2, i] + E4 * k[3, i] + E5 * k[4, i] + E6 * k[5, i] + E7 * k[6, i]
-        )
+        e = h * (E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i] + E7 * k7[i])
         sc = atol + rtol * max(abs(y[i]), abs(yn[i]))
         total += (e / sc) ** 2
     return np.sqrt(total / n2)
 
 
 @kernel
-def _dense_coefficients(work, y: np.ndarray, h: float) -> None:
+def _dense_coefficients(work, y: np.ndarray, k1: np.ndarray, h: float) -> None:
     """Coefficients of the continuous extension over the step just computed: the
     Hermite part and DOPRI5's fourth-order term d4."""
-    hermite_coefficients(work, y, h)
-    k = work.stages
+    hermite_coefficients(work, y, k1, h)
+    k3, k4, k5, k6 = work.stages[1], work.stages[2], work.stages[3], work.stages[4]
+    k7 = work.ydot_end
     d = work.dense
     for i in range(y.shape[0]):
-        d[4, i] = h * (
-            D1 * k[0, i] + D3 * k[2, i] + D4 * k[3, i] + D5 * k[4, i] + D6 * k[5, i] + D7 * k[6, i]
-        )
+        d[4, i] = h * (D1 * k1[i] + D3 * k3[i] + D4 * k4[i] + D5 * k5[i] + D6 * k6[i] + D7 * k7[i])
 
 
 @kernel
-def step(sys, work, mem, t: float, h: float, y: np.ndarray, rtol: float, atol: float):
-    """One step from (t, y), k1 in work.stages[0]: the new state into work.ynew,
-    its derivative into work.stages[6], the dense output into work.dense.
-    Returns (status, error estimate scaled to the tolerance)."""
-    s = _stages(sys, work, mem, t, h, y)
+def plan(t: float, h: float, t_end: float, buffers, tally) -> float:
+    """The step to take from t given the step size h the controller wants: h, stretched
+    or shortened to land on t_end when it ends within 1 % of it (samples come from the
+    continuous extension, so steps need not end on them)."""
+    return t_end - t if t + 1.01 * h >= t_end else h
+
+
+@kernel
+def mark_grazes(sys, work, mem) -> None:
+    """Nothing to do: a stage evaluation that penetrated a gap has marked it in mem[g, 2]."""
+
+
+@kernel
+def sample(sys, work, mem, t0: float, h: float, time: float, row: np.ndarray) -> int:
+    """Record the sample at `time` in (t0, t0 + h] from the continuous extension, the
+    model evaluated afresh there; the right-hand side status."""
+    theta = min((time - t0) / h, 1.0)
+    interpolate(work, theta, work.yint.shape[0], work.yint)
+    return record_row(sys, work, mem, time, work.yint, row)
+
+
+@kernel
+def start(sys, work, carry) -> None:
+    """Nothing to prepare: a step starts from y and Carry.derivative alone."""
+
+
+@kernel
+def step(sys, work, carry, mem, t: float, h: float, y: np.ndarray, options, tally):
+    """One step from (t, y), k1 = ẏ in carry.derivative: the new state into work.ynew,
+    its derivative into work.ydot_end, the dense output into work.dense; its six
+    evaluations counted in tally. Returns (status, error estimate scaled to the tolerance)."""
+    tally.evaluations += 6
+    k1 = carry.derivative
+    s = _stages(sys, work, mem, t, h, y, k1)
     if s != OK:
         return s, np.inf
-    _dense_coefficients(work, y, h)
-    return OK, _error_norm(work, y, h, 2 * sys.n, rtol, atol)
+    _dense_coefficients(work, y, k1, h)
+    return OK, _error_norm(work, y, k1, h, 2 * sys.n, options.rtol, options.atol)
+
+
+@kernel
+def accept(sys, work, carry) -> None:
+    """Nothing beyond the loop's own: the step's end derivative becomes the next k1 (FSAL)."""
 
 
 @kernel

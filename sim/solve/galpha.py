@@ -43,11 +43,10 @@ Simpson's, whose difference from the trapezoid is a third error estimate.
 import numpy as np
 
 from sim.jit import kernel
+from sim.model.clearance import gap
 from sim.model.constraints import constraint_terms
 from sim.model.system import BM_EA
 from sim.solve.dae import (
-    OK,
-    SINGULAR,
     block_times,
     dissipated_power,
     factor_schur,
@@ -58,6 +57,9 @@ from sim.solve.dae import (
 )
 from sim.solve.dense import hermite_coefficients, interpolate
 from sim.solve.linalg import lu_in_place, lu_solve_in_place
+from sim.solve.record import write_row
+from sim.solve.state import next_sample
+from sim.solve.status import OK, SINGULAR
 from sim.solve.tangent import iteration_matrix
 
 MAX_NEWTON = 20
@@ -81,6 +83,8 @@ the contact's stiffness and damping, and simplified Newton then crawls (measured
 MAX_REFRESH = 8
 """Iteration matrices re-formed within one Newton solve before the step is retried shorter."""
 SAFE = 0.9
+GRAZE_PROBES = (0.25, 0.5, 0.75)
+"""Fractions of a step at which the continuous extension is probed for a graze."""
 
 
 @kernel
@@ -94,24 +98,59 @@ def coefficients(rho_inf: float) -> tuple[float, float, float, float]:
 
 
 @kernel
-def start(sys, work) -> None:
-    """Start from the evaluation in work (stages[0] = ẏ_0, rhs = λ_0): a_0 = q̈_0."""
+def start(sys, work, carry) -> None:
+    """Start from the evaluation at (t, y) (ẏ in carry.derivative, λ in work.rhs):
+    a_0 = q̈_0."""
     n = sys.n
     for i in range(n):
-        work.ga_acc[i] = work.stages[0, n + i]
-        work.ga_xdd[i] = work.stages[0, n + i]
+        carry.acc[i] = carry.derivative[n + i]
+        carry.xdd[i] = carry.derivative[n + i]
     for r in range(sys.m):
-        work.ga_lam[r] = work.rhs[r]
+        carry.lam[r] = work.rhs[r]
 
 
 @kernel
-def accept(work) -> None:
+def accept(sys, work, carry) -> None:
     """Make the step just computed the start of the next: a_n, q̈_n, λ_n."""
-    for i in range(work.ga_acc.shape[0]):
-        work.ga_acc[i] = work.ga_acc_new[i]
-        work.ga_xdd[i] = work.ga_xdd_new[i]
-    for r in range(work.ga_lam.shape[0]):
-        work.ga_lam[r] = work.ga_lam_new[r]
+    for i in range(carry.acc.shape[0]):
+        carry.acc[i] = work.ga_acc_new[i]
+        carry.xdd[i] = work.ga_xdd_new[i]
+    for r in range(carry.lam.shape[0]):
+        carry.lam[r] = work.ga_lam_new[r]
+
+
+@kernel
+def plan(t: float, h: float, t_end: float, buffers, tally) -> float:
+    """The step to take from t given the step size h the controller wants: equal steps
+    to the next sample (or t_end), none longer than h. Samples record the step's own
+    state (`sample`), so steps end on them."""
+    left = min(t_end, next_sample(t, buffers, tally)) - t
+    return left / np.ceil(left / h * (1.0 - 1e-9))
+
+
+@kernel
+def mark_grazes(sys, work, mem) -> None:
+    """Mark in mem[g, 2] every open gap that the step's continuous extension penetrates
+    at GRAZE_PROBES. The Newton iterates are not points of the motion (an iterate that
+    overshoots into a wall says nothing about the motion), so the marks they left are
+    cleared first."""
+    n = sys.n
+    for g in range(mem.shape[0]):
+        mem[g, 2] = 0.0
+    for theta in GRAZE_PROBES:
+        interpolate(work, theta, 2 * n, work.yint)
+        for g in range(mem.shape[0]):
+            if mem[g, 0] == 0.0 and gap(sys, g, work.yint[:n], work.yint[n : 2 * n])[0] > 0.0:
+                mem[g, 2] = 1.0
+
+
+@kernel
+def sample(sys, work, mem, t0: float, h: float, time: float, row: np.ndarray) -> int:
+    """Record the sample at `time`, the step's end (`plan`), from the step's own state,
+    accelerations and multipliers: accelerations evaluated afresh at an interpolated state
+    would carry its interpolation error times the beams' axial stiffness."""
+    write_row(sys, work, work.ynew, row)
+    return OK
 
 
 @kernel
@@ -163,9 +202,9 @@ def _residual(sys, work, mem, t, q, v, xdd, lam, bh2, rtol, atol) -> float:
 
 
 @kernel
-def _newton(sys, work, mem, t, h, y, rtol, atol, rho_inf, factor: bool):
+def _newton(sys, work, carry, mem, t, h, y, rtol, atol, rho_inf, factor: bool):
     """Predict the state at t + h, then correct it by simplified Newton with the
-    factors in work.it_mat, refreshed first when `factor` and again at the
+    factors in carry.it_mat, refreshed first when `factor` and again at the
     current iterate whenever the residual contracts by less than SLOW (at most
     MAX_REFRESH matrices), until the residual of the equations of motion and
     constraints is within NEWTON_TOL of the tolerance. Returns (status,
@@ -177,17 +216,17 @@ def _newton(sys, work, mem, t, h, y, rtol, atol, rho_inf, factor: bool):
     q = work.ynew[:n]
     v = work.ynew[n : 2 * n]
     xdd = work.ga_xdd_new
-    x_old = work.ga_xdd
+    x_old = carry.xdd
     lam = work.ga_lam_new
     # Predictor: the acceleration carried over.
     for i in range(n):
-        a_old = work.ga_acc[i]
+        a_old = carry.acc[i]
         xdd[i] = x_old[i]
         a_new = ((1.0 - af) * xdd[i] + af * x_old[i] - am * a_old) / (1.0 - am)
         v[i] = y[n + i] + h * ((1.0 - gamma) * a_old + gamma * a_new)
         q[i] = y[i] + h * y[n + i] + h * h * ((0.5 - beta) * a_old + beta * a_new)
     for r in range(m):
-        lam[r] = work.ga_lam[r]
+        lam[r] = carry.lam[r]
     tn = t + h
     bh2 = beta * h * h
     v_per_q = gamma / (beta * h)
@@ -212,13 +251,15 @@ def _newton(sys, work, mem, t, h, y, rtol, atol, rho_inf, factor: bool):
             refresh = True
         previous = size
         if refresh:
-            iteration_matrix(sys, work, mem, tn, q, v, (1.0 - am) / (1.0 - af), gamma * h, bh2)
+            iteration_matrix(
+                sys, work, carry.it_mat, mem, tn, q, v, (1.0 - am) / (1.0 - af), gamma * h, bh2
+            )
             matrices += 1
-            work.it_fresh[0] = 1.0
-            if not lu_in_place(work.it_mat, work.it_piv):
-                work.it_fresh[0] = 0.0
+            carry.it_fresh[0] = 1.0
+            if not lu_in_place(carry.it_mat, carry.it_piv):
+                carry.it_fresh[0] = 0.0
                 return SINGULAR, False, it + 1, matrices, it
-        lu_solve_in_place(work.it_mat, work.it_piv, x)
+        lu_solve_in_place(carry.it_mat, carry.it_piv, x)
         for i in range(n):
             q[i] += x[i]
             v[i] += v_per_q * x[i]
@@ -235,9 +276,23 @@ def _newton(sys, work, mem, t, h, y, rtol, atol, rho_inf, factor: bool):
 
 
 @kernel
-def step(sys, work, mem, t: float, h: float, y: np.ndarray, rtol: float, atol: float, rho_inf):
-    """One step from (t, y), ẏ in work.stages[0], a_n, q̈_n and λ_n in work: the new
-    state into work.ynew, its derivative into work.stages[6], the Hermite
+def step(sys, work, carry, mem, t: float, h: float, y: np.ndarray, options, tally):
+    """`_step`, its force evaluations, iteration matrices and Newton failures counted in
+    tally. Returns (status, error estimate scaled to the tolerance)."""
+    s, err, evaluations, jacobians = _step(
+        sys, work, carry, mem, t, h, y, options.rtol, options.atol, options.method.rho_inf
+    )
+    tally.evaluations += evaluations
+    tally.jacobians += jacobians
+    if s == OK and not np.isfinite(err):
+        tally.newton_failures += 1
+    return s, err
+
+
+@kernel
+def _step(sys, work, carry, mem, t: float, h: float, y: np.ndarray, rtol, atol, rho_inf):
+    """One step from (t, y), ẏ in carry.derivative, a_n, q̈_n and λ_n in carry: the new
+    state into work.ynew, its derivative into work.ydot_end, the Hermite
     extension into work.dense. Returns (status, error scaled to the tolerance,
     force evaluations, iteration matrices); an error of ∞ when Newton fails.
 
@@ -255,26 +310,26 @@ def step(sys, work, mem, t: float, h: float, y: np.ndarray, rtol: float, atol: f
     step (the index-3 method's decaying (−ρ∞)ⁿ mode) that the error estimate of
     q does not see. On the flexible flagship the retry costs 4 % of the run."""
     n = sys.n
-    fresh = work.it_fresh[0] > 0.0
+    fresh = carry.it_fresh[0] > 0.0
     s, converged, evaluations, jacobians, iterations = _newton(
-        sys, work, mem, t, h, y, rtol, atol, rho_inf, not fresh
+        sys, work, carry, mem, t, h, y, rtol, atol, rho_inf, not fresh
     )
     if s == OK and not converged and fresh:
         s, converged, more, more_jacobians, iterations = _newton(
-            sys, work, mem, t, h, y, rtol, atol, rho_inf, True
+            sys, work, carry, mem, t, h, y, rtol, atol, rho_inf, True
         )
         evaluations += more
         jacobians += more_jacobians
     if s != OK or not converged:
         return s, np.inf, evaluations, jacobians
     if iterations > 3:
-        work.it_fresh[0] = 0.0  # converging slowly: refresh at the next step
+        carry.it_fresh[0] = 0.0  # converging slowly: refresh at the next step
     am, af, beta, _ = coefficients(rho_inf)
     for i in range(n):
-        a_old = work.ga_acc[i]
-        work.ga_acc_new[i] = (
-            (1.0 - af) * work.ga_xdd_new[i] + af * work.ga_xdd[i] - am * a_old
-        ) / (1.0 - am)
+        a_old = carry.acc[i]
+        work.ga_acc_new[i] = ((1.0 - af) * work.ga_xdd_new[i] + af * carry.xdd[i] - am * a_old) / (
+            1.0 - am
+        )
     # What is reported and carried on (accelerations, drive torque, powers, the
     # derivative for the continuous extension) comes from the equations of
     # motion solved at the new state, not from the method's q̈ and λ: in the
@@ -288,8 +343,8 @@ def step(sys, work, mem, t: float, h: float, y: np.ndarray, rtol: float, atol: f
     # projected onto the velocity constraints, and the velocity-dependent
     # forces (contact damping, friction, beam damping, the γ of Φ_q q̈) are
     # evaluated again with them.
-    k0 = work.stages[0]
-    k6 = work.stages[6]
+    k0 = carry.derivative
+    k6 = work.ydot_end
     yn = work.ynew
     if sys.m > 0:
         if factor_schur(sys, work) != OK:
@@ -301,8 +356,8 @@ def step(sys, work, mem, t: float, h: float, y: np.ndarray, rtol: float, atol: f
     s = factored_accelerations(sys, work, yn[n : 2 * n], k6)
     if s != OK:
         return s, np.inf, evaluations, jacobians
-    hermite_coefficients(work, y, h)
-    err_energy = _energy_quadratures(sys, work, mem, h, y, rtol, atol)
+    hermite_coefficients(work, y, k0, h)
+    err_energy = _energy_quadratures(sys, work, mem, h, y, k0, rtol, atol)
     evaluations += 1  # the midpoint's dissipated power, a partial evaluation
     # Local error of q: (β − 1/6) h² (q̈_{n+1} − q̈_n), in work.scratch.
     for i in range(n):
@@ -312,7 +367,7 @@ def step(sys, work, mem, t: float, h: float, y: np.ndarray, rtol: float, atol: f
 
 
 @kernel
-def _energy_quadratures(sys, work, mem, h: float, y: np.ndarray, rtol, atol) -> float:
+def _energy_quadratures(sys, work, mem, h: float, y: np.ndarray, k0, rtol, atol) -> float:
     """The drive work (trapezoidal rule) and the dissipated energy (Simpson's rule,
     the midpoint state from the Hermite extension) over the step into work.ynew;
     returns the dissipated energy's quadrature error, |Simpson − trapezoid|,
@@ -325,8 +380,7 @@ def _energy_quadratures(sys, work, mem, h: float, y: np.ndarray, rtol, atol) -> 
     at the midpoint, aside, so work keeps the evaluation at the step's end
     (forces, contact outputs)."""
     n = sys.n
-    k0 = work.stages[0]
-    k6 = work.stages[6]
+    k6 = work.ydot_end
     yn = work.ynew
     mid = work.ytmp
     interpolate(work, 0.5, 2 * n, mid)
@@ -340,8 +394,9 @@ def _energy_quadratures(sys, work, mem, h: float, y: np.ndarray, rtol, atol) -> 
 
 
 @kernel
-def step_factor(err: float) -> float:
-    """Ratio of the next step size to this one for a local error of order h³,
+def step_factor(err: float, err_old: float) -> float:
+    """Ratio of the next step size to this one for a local error of order h³ (err_old,
+    DOPRI5's, is not used),
     held at 1 unless the error allows doubling: every change of h excites the
     spurious oscillation of the index-3 method's q̈ and λ (decaying like
     (−ρ∞)ⁿ), which stiff beams turn into visible acceleration noise; a constant

@@ -1,11 +1,11 @@
 """The integration loop shared by every method: step control, contact events,
 exact sampling, peaks and sanity checks.
 
-A method supplies one step: from (t, y) and a step size h it computes the new
-state (work.ynew), the state derivative at the step's end (work.stages[6]) and
-the coefficients of a continuous extension over the step (work.dense), and
-returns an error estimate scaled so that 1 is the tolerance. The loop does
-the rest, identically for the explicit and the implicit method:
+A method (`sim.solve.methods`) supplies one step: from (t, y) and a step size h
+it computes the new state (work.ynew), the state derivative at the step's end
+(work.ydot_end) and the coefficients of a continuous extension over the step
+(work.dense), and returns an error estimate scaled so that 1 is the tolerance.
+The loop does the rest, identically for the explicit and the implicit method:
 
 - contact events: after a step passes the error test, every gap whose sign
   disagrees with its in-contact flag is located on the continuous extension by
@@ -20,7 +20,7 @@ the rest, identically for the explicit and the implicit method:
   time and the joint.
 
 The caller advances the integration in chunks (`integrate` returns at t_end);
-all state between chunks lives in the arrays it passes.
+all state between chunks lives in the structures it passes (`sim.solve.state`).
 """
 
 import numpy as np
@@ -28,51 +28,11 @@ import numpy as np
 from sim.jit import kernel
 from sim.model.clearance import face_switch_energy, gap
 from sim.model.system import OUT_NORMAL_FORCE, OUT_PENETRATION
-from sim.solve import dopri, galpha
-from sim.solve.dae import NONFINITE, OK, SC_DRIVE_TORQUE, rhs
+from sim.solve import methods
+from sim.solve.dae import SC_DRIVE_TORQUE, rhs
 from sim.solve.dense import interpolate
-from sim.solve.record import record_row, reference_point, write_row
-
-# Integration methods (solver.method).
-METHOD_DOPRI5, METHOD_GENERALIZED_ALPHA = 0, 1
-METHODS = {"dopri5": METHOD_DOPRI5, "generalized_alpha": METHOD_GENERALIZED_ALPHA}
-
-# Integrator status codes beyond the right-hand side's OK / SINGULAR / NONFINITE.
-MAX_STEPS, STEP_COLLAPSE, PENETRATION, VIOLATION = 3, 4, 5, 6
-GRAZE_PROBES = (0.25, 0.5, 0.75)  # fractions of a generalized-α step probed for a graze
-
-# Indices into the integrator state `st`.
-ST_T, ST_H, ST_FACOLD, ST_FSAL = range(4)
-N_ST = 4
-# Indices into `opts`.
-(
-    OPT_RTOL,
-    OPT_ATOL,
-    OPT_HMAX,
-    OPT_HMIN,
-    OPT_VIOLATION_BOUND,
-    OPT_MAX_STEPS,
-    OPT_METHOD,
-    OPT_RHO_INF,
-) = range(8)
-N_OPTS = 8
-# Indices into `stats` (counters) and `diag` (failure details).
-(
-    S_ACCEPTED,
-    S_REJECTED,
-    S_NFEV,
-    S_EVENTS,
-    S_CULPRIT,
-    S_OUT,
-    S_SEC,
-    S_JACOBIANS,
-    S_NEWTON_FAILURES,
-) = range(9)
-N_STATS = 9
-D_TIME, D_VALUE = range(2)
-
-# Step-size bounds per step: at most this much smaller or larger.
-FAC_MIN, FAC_MAX = 0.2, 10.0
+from sim.solve.record import reference_point
+from sim.solve.status import MAX_STEPS, NONFINITE, OK, PENETRATION, STEP_COLLAPSE, VIOLATION
 
 
 @kernel
@@ -136,23 +96,13 @@ def _first_event(sys, work, mem, y: np.ndarray) -> tuple[int, float]:
 
 
 @kernel
-def _grazed(sys, work, mem, method: int) -> bool:
+def _grazed(sys, work, mem, options) -> bool:
     """True if the motion inside the step penetrated a gap that is apart at both
-    ends of the step: a contact the sign test at the step's ends cannot see.
-    DOPRI5: a stage evaluation penetrated it (marked in mem[g, 2]). Generalized-α:
-    its Newton iterates are not points of the motion (an iterate that overshoots
-    into a wall says nothing about the motion), so the step's continuous
-    extension is probed at GRAZE_PROBES instead."""
+    ends of the step: a contact the sign test at the step's ends cannot see. The
+    method marks the gaps its step passed through (`mark_grazes`)."""
     n = sys.n
     yn = work.ynew
-    if method == METHOD_GENERALIZED_ALPHA:
-        for g in range(mem.shape[0]):
-            mem[g, 2] = 0.0
-        for theta in GRAZE_PROBES:
-            interpolate(work, theta, 2 * n, work.yint)
-            for g in range(mem.shape[0]):
-                if mem[g, 0] == 0.0 and gap(sys, g, work.yint[:n], work.yint[n : 2 * n])[0] > 0.0:
-                    mem[g, 2] = 1.0
+    methods.mark_grazes(sys, work, mem, options)
     for g in range(mem.shape[0]):
         if mem[g, 2] > 0.0 and mem[g, 0] == 0.0:
             if gap(sys, g, yn[:n], yn[n : 2 * n])[0] <= 0.0:
@@ -181,15 +131,15 @@ def _flip(sys, mem, g: int, y: np.ndarray) -> None:
 
 
 @kernel
-def _flip_and_refresh(sys, work, mem, g: int, t: float, y: np.ndarray, stats, rev_events) -> int:
+def _flip_and_refresh(sys, work, carry, mem, g: int, t: float, y: np.ndarray, rev_events, tally):
     """Apply the event of gap g at (t, y) and re-evaluate the derivative at the
     step's start, which the changed contact state invalidates. The event is booked to
     the revolution after the last recorded section (sections at t are recorded first)."""
     _flip(sys, mem, g, y)
-    stats[S_EVENTS] += 1
-    rev_events[min(stats[S_SEC], rev_events.shape[0] - 1)] += 1
-    stats[S_NFEV] += 1
-    return rhs(sys, work, mem, t, y, work.stages[0])
+    tally.events += 1
+    rev_events[min(tally.sections, rev_events.shape[0] - 1)] += 1
+    tally.evaluations += 1
+    return rhs(sys, work, mem, t, y, carry.derivative)
 
 
 @kernel
@@ -212,183 +162,114 @@ def _update_peaks(sys, work, peaks: np.ndarray) -> None:
 
 
 @kernel
-def _revolution_row(t_step_end: float, sec_t, stats, rows: int) -> int:
+def _revolution_row(t_step_end: float, sec_t, tally, rows: int) -> int:
     """Row of `rev_peaks` for an accepted step that ends at t_step_end, called before the
     step's sections are recorded: row r holds revolution r, the steps ending in
     (sec_t[r - 1], sec_t[r]]; the last row (r = sec_t.size) what follows the last section.
     A DOPRI5 step that straddles a section is booked to the revolution it ends in."""
-    r = stats[S_SEC]
+    r = tally.sections
     if r < sec_t.shape[0] and sec_t[r] < t_step_end - 1e-12 * max(1.0, abs(t_step_end)):
         r += 1
     return min(r, rows - 1)
 
 
 @kernel
-def _check_state(sys, work, opts, pen_bound, stats) -> int:
+def _check_state(sys, work, options, tally) -> int:
     """Sanity of the last evaluation: penetration and constraint violation bounds."""
     for j in range(work.jout.shape[0]):
-        if work.jout[j, OUT_PENETRATION] > pen_bound[j]:
-            stats[S_CULPRIT] = j
+        if work.jout[j, OUT_PENETRATION] > options.pen_bound[j]:
+            tally.culprit = j
             return PENETRATION
     viol = 0.0
     for i in range(sys.m):
         viol += work.phi[i] * work.phi[i]
-    if np.sqrt(viol) > opts[OPT_VIOLATION_BOUND]:
+    if np.sqrt(viol) > options.violation_bound:
         return VIOLATION
     return OK
 
 
 @kernel
-def _sample(sys, work, mem, method, t0, h, times, rows, stats, slot, scratch) -> int:
-    """Record every requested time in (t0, t0 + h]. DOPRI5: from its continuous
-    extension, evaluated afresh. Generalized-α ends a step at every requested
-    time (`_next_sample`) and records the step's own state, accelerations and
-    multipliers: accelerations evaluated afresh at an interpolated state would
-    carry its interpolation error times the beams' axial stiffness."""
-    ny = 2 * sys.n + 2
+def _sample(sys, work, mem, t0, h, buffers, tally, options) -> int:
+    """Record every output sample, then every section, requested in (t0, t0 + h], as
+    the method records them (`sample`)."""
     # Round-off in t0 + h must not drop a sample that falls on the step's end.
     t1 = t0 + h + 1e-12 * max(1.0, abs(t0))
-    while stats[slot] < times.shape[0] and times[stats[slot]] <= t1:
-        i = stats[slot]
-        if method == METHOD_GENERALIZED_ALPHA:
-            write_row(sys, work, work.ynew, rows[i])
-        else:
-            theta = min((times[i] - t0) / h, 1.0)
-            interpolate(work, theta, ny, scratch)
-            s = record_row(sys, work, mem, times[i], scratch, rows[i])
-            if s != OK:
-                return s
-        stats[slot] += 1
+    while tally.outputs < buffers.out_t.shape[0] and buffers.out_t[tally.outputs] <= t1:
+        i = tally.outputs
+        s = methods.sample(sys, work, mem, t0, h, buffers.out_t[i], buffers.out_rows[i], options)
+        if s != OK:
+            return s
+        tally.outputs += 1
+    while tally.sections < buffers.sec_t.shape[0] and buffers.sec_t[tally.sections] <= t1:
+        i = tally.sections
+        s = methods.sample(sys, work, mem, t0, h, buffers.sec_t[i], buffers.sec_rows[i], options)
+        if s != OK:
+            return s
+        tally.sections += 1
     return OK
 
 
 @kernel
-def _next_sample(t: float, out_t, sec_t, stats) -> float:
-    """The earliest output or section time after t (∞ when none is left)."""
-    nxt = np.inf
-    if stats[S_OUT] < out_t.shape[0]:
-        nxt = out_t[stats[S_OUT]]
-    if stats[S_SEC] < sec_t.shape[0]:
-        nxt = min(nxt, sec_t[stats[S_SEC]])
-    return nxt if nxt > t else np.inf
+def _fail(tally, status: int, t: float) -> int:
+    """Book a failure at time t; returns its status."""
+    tally.failure_time = t
+    return status
 
 
 @kernel
-def _step(sys, work, mem, method: int, t: float, h: float, y: np.ndarray, opts, stats):
-    """One step of the chosen method: (status, error estimate scaled to the tolerance)."""
-    rtol = opts[OPT_RTOL]
-    atol = opts[OPT_ATOL]
-    if method == METHOD_DOPRI5:
-        stats[S_NFEV] += 6
-        return dopri.step(sys, work, mem, t, h, y, rtol, atol)
-    s, err, evaluations, jacobians = galpha.step(
-        sys, work, mem, t, h, y, rtol, atol, opts[OPT_RHO_INF]
-    )
-    stats[S_NFEV] += evaluations
-    stats[S_JACOBIANS] += jacobians
-    if s == OK and not np.isfinite(err):
-        stats[S_NEWTON_FAILURES] += 1
-    return s, err
-
-
-@kernel
-def _grown_step(method: int, hs: float, err: float, facold: float) -> float:
-    """The next step size after an accepted step of size hs with error err."""
-    if method == METHOD_DOPRI5:
-        fac = dopri.step_factor(err, facold)
-    else:
-        fac = galpha.step_factor(err)
-    return hs * max(FAC_MIN, min(FAC_MAX, fac))
-
-
-@kernel
-def _shrunk_step(method: int, hs: float, err: float) -> float:
-    """The retry step size after a rejected step (err > 1, or ∞ when the step
-    itself failed: a stage non-finite or Newton not converging)."""
-    if not np.isfinite(err):
-        return hs * FAC_MIN
-    if method == METHOD_DOPRI5:
-        fac = dopri.step_factor(err, 1.0)
-    else:
-        fac = galpha.step_factor(err)
-    return hs * max(FAC_MIN, min(1.0, fac))
-
-
-@kernel
-def integrate(
-    sys,
-    work,
-    mem: np.ndarray,
-    y: np.ndarray,
-    st: np.ndarray,
-    t_end: float,
-    opts: np.ndarray,
-    out_t: np.ndarray,
-    out_rows: np.ndarray,
-    sec_t: np.ndarray,
-    sec_rows: np.ndarray,
-    peaks: np.ndarray,
-    rev_peaks: np.ndarray,
-    rev_events: np.ndarray,
-    pen_bound: np.ndarray,
-    stats: np.ndarray,
-    diag: np.ndarray,
-) -> int:
-    """Advance y from st[ST_T] to t_end. Returns OK or a failure status, with the
-    time in diag[D_TIME] and the responsible joint (if any) in stats[S_CULPRIT].
+def integrate(sys, work, carry, trajectory, t_end: float, options, buffers, tallies) -> int:
+    """Advance the trajectory (`sim.solve.state.Trajectory`) from its clock's t to t_end,
+    recording into `buffers` and counting into tallies[0] (`sim.solve.state.TALLY`).
+    Returns OK or a failure status (`sim.solve.status`), with the time in
+    tally.failure_time and the responsible joint (if any) in tally.culprit.
     rev_peaks (sec_t.size + 1, peaks.size) and rev_events (sec_t.size + 1) take the same
     peaks and the contact events per revolution (`_revolution_row`)."""
+    tally = tallies[0]
+    clock = trajectory.clock[0]
+    y = trajectory.y
+    mem = trajectory.mem
     ny = 2 * sys.n + 2
-    k = work.stages
-    method = int(opts[OPT_METHOD])
-    hmax = opts[OPT_HMAX]
-    hmin = opts[OPT_HMIN]
-    t = st[ST_T]
-    h = st[ST_H]
-    facold = st[ST_FACOLD]
-    if st[ST_FSAL] == 0.0:
-        s = rhs(sys, work, mem, t, y, k[0])
-        stats[S_NFEV] += 1
+    k0 = carry.derivative
+    k_end = work.ydot_end
+    hmax = options.hmax
+    hmin = options.hmin
+    t = clock.t
+    h = clock.h
+    facold = clock.facold
+    if not clock.started:
+        s = rhs(sys, work, mem, t, y, k0)
+        tally.evaluations += 1
         if s != OK:
-            diag[D_TIME] = t
-            return s
-        if method == METHOD_GENERALIZED_ALPHA:
-            galpha.start(sys, work)
-        st[ST_FSAL] = 1.0
+            return _fail(tally, s, t)
+        methods.start(sys, work, carry, options)
+        clock.started = True
     wanted = h
     forced = 0.0  # > 0: the next step must end exactly at a located event
     pending = -1  # the gap to flip at the end of the forced step
     flips_at_t = 0
     while t_end - t > 1e-12 * max(1.0, abs(t)):
-        if stats[S_ACCEPTED] + stats[S_REJECTED] >= opts[OPT_MAX_STEPS]:
-            diag[D_TIME] = t
-            return MAX_STEPS
+        if tally.accepted + tally.rejected >= options.max_steps:
+            return _fail(tally, MAX_STEPS, t)
         if forced > 0.0:
             hs = forced
         else:
             hs = min(h, hmax)
             wanted = hs
-            if method == METHOD_GENERALIZED_ALPHA:
-                # Equal steps to the next sample or t_end, none longer than h.
-                left = min(t_end, _next_sample(t, out_t, sec_t, stats)) - t
-                hs = left / np.ceil(left / hs * (1.0 - 1e-9))
-            elif t + 1.01 * hs >= t_end:
-                hs = t_end - t
+            hs = methods.plan(t, hs, t_end, buffers, tally, options)
         mem[:, 2] = 0.0
-        s, err = _step(sys, work, mem, method, t, hs, y, opts, stats)
+        s, err = methods.step(sys, work, carry, mem, t, hs, y, options, tally)
         if s != OK:
             err = np.inf
-        if err <= 1.0 and forced == 0.0 and hs > 4.0 * hmin and _grazed(sys, work, mem, method):
+        if err <= 1.0 and forced == 0.0 and hs > 4.0 * hmin and _grazed(sys, work, mem, options):
             err = np.inf  # resolve the graze with shorter steps
         if not err <= 1.0:
-            stats[S_REJECTED] += 1
+            tally.rejected += 1
             forced = 0.0
             pending = -1
-            h = _shrunk_step(method, hs, err)
+            h = methods.shrunk_step(hs, err, options)
             if h < hmin:
-                diag[D_TIME] = t
-                diag[D_VALUE] = h
-                return STEP_COLLAPSE if s == OK else s
+                tally.failure_step = h
+                return _fail(tally, STEP_COLLAPSE if s == OK else s, t)
             continue
         if forced == 0.0 and flips_at_t <= 2 * work.gaps.shape[0]:
             g, theta = _first_event(sys, work, mem, y)
@@ -397,44 +278,36 @@ def integrate(
                     # Already across at the start of the step (a previous event
                     # ended a hair's breadth on the other side): flip now.
                     flips_at_t += 1
-                    s = _flip_and_refresh(sys, work, mem, g, t, y, stats, rev_events)
+                    s = _flip_and_refresh(sys, work, carry, mem, g, t, y, buffers.rev_events, tally)
                     if s != OK:
-                        diag[D_TIME] = t
-                        return s
+                        return _fail(tally, s, t)
                     continue
                 forced = theta * hs
                 pending = g
                 continue
         # The step is accepted; work holds the evaluation at its end.
-        _update_peaks(sys, work, peaks)
-        row = _revolution_row(t + hs, sec_t, stats, rev_peaks.shape[0])
-        _update_peaks(sys, work, rev_peaks[row])
-        s = _check_state(sys, work, opts, pen_bound, stats)
+        _update_peaks(sys, work, buffers.peaks)
+        row = _revolution_row(t + hs, buffers.sec_t, tally, buffers.rev_peaks.shape[0])
+        _update_peaks(sys, work, buffers.rev_peaks[row])
+        s = _check_state(sys, work, options, tally)
         if s != OK:
-            diag[D_TIME] = t + hs
-            return s
-        if method == METHOD_GENERALIZED_ALPHA:
-            galpha.accept(work)
-        s = _sample(sys, work, mem, method, t, hs, out_t, out_rows, stats, S_OUT, work.yint)
-        if s == OK:
-            s = _sample(sys, work, mem, method, t, hs, sec_t, sec_rows, stats, S_SEC, work.yint)
+            return _fail(tally, s, t + hs)
+        methods.accept(sys, work, carry, options)
+        s = _sample(sys, work, mem, t, hs, buffers, tally, options)
         if s != OK:
-            diag[D_TIME] = t
-            return s
+            return _fail(tally, s, t)
         t += hs
-        stats[S_ACCEPTED] += 1
+        tally.accepted += 1
         for i in range(ny):
             y[i] = work.ynew[i]
-            k[0, i] = k[6, i]
+            k0[i] = k_end[i]
         for i in range(ny):
             if not np.isfinite(y[i]):
-                diag[D_TIME] = t
-                return NONFINITE
+                return _fail(tally, NONFINITE, t)
         if pending >= 0:
-            s = _flip_and_refresh(sys, work, mem, pending, t, y, stats, rev_events)
+            s = _flip_and_refresh(sys, work, carry, mem, pending, t, y, buffers.rev_events, tally)
             if s != OK:
-                diag[D_TIME] = t
-                return s
+                return _fail(tally, s, t)
             # Resume with the step size that found the event, not the short
             # step that ended on it.
             forced = 0.0
@@ -442,12 +315,12 @@ def integrate(
             flips_at_t = 0
             continue
         flips_at_t = 0
-        grown = _grown_step(method, hs, err, facold)
+        grown = methods.grown_step(hs, err, facold, options)
         # A step cut short to land on t_end or a sample says nothing against
         # the step size that was wanted.
         h = max(grown, h) if hs < wanted else grown
         facold = max(err, 1e-4)
-    st[ST_T] = t
-    st[ST_H] = h
-    st[ST_FACOLD] = facold
+    clock.t = t
+    clock.h = h
+    clock.facold = facold
     return OK

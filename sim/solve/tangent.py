@@ -33,9 +33,8 @@ tolerance v0 = 1e-4 m/s over which the friction coefficient ramps."""
 
 
 @kernel
-def _add_contact_tangent(sys, work, mem, q, qd, x: np.ndarray, step: float, coef: float) -> None:
+def _add_contact_tangent(sys, work, mat, mem, q, qd, x: np.ndarray, step: float, coef: float):
     """mat[i, c] −= coef ∂Q_i/∂x_c for the contact coordinates, x being q or q̇."""
-    mat = work.it_mat
     coords = work.contact_coords
     contact_forces(sys, work, q, qd, mem, work.fd_base)
     for a in range(coords.shape[0]):
@@ -50,10 +49,9 @@ def _add_contact_tangent(sys, work, mem, q, qd, x: np.ndarray, step: float, coef
 
 
 @kernel
-def _add_beam_tangent(sys, work, q, qd, c_c: float, c_k: float) -> None:
+def _add_beam_tangent(sys, work, mat, q, qd, c_c: float, c_k: float) -> None:
     """mat += c_K ∂F/∂q + c_C ∂F_d/∂q̇ (+ c_K ∂F_d/∂q) of every beam's elastic
     (and damping) forces F = −Q_beam."""
-    mat = work.it_mat
     for b in range(sys.beam_off.shape[0]):
         o = sys.beam_off[b]
         size = 4 * (sys.beam_nel[b] + 1)
@@ -91,21 +89,20 @@ def _add_beam_tangent(sys, work, q, qd, c_c: float, c_k: float) -> None:
 
 @kernel
 def iteration_matrix(
-    sys, work, mem, t: float, q: np.ndarray, qd: np.ndarray, c_m: float, c_c: float, c_k: float
+    sys, work, mat, mem, t: float, q: np.ndarray, qd: np.ndarray, c_m: float, c_c: float, c_k: float
 ) -> None:
-    """Assemble the (n + m)² iteration matrix into work.it_mat."""
+    """Assemble the (n + m)² iteration matrix into mat."""
     n = sys.n
     m = sys.m
-    mat = work.it_mat
     mat[:, :] = 0.0
     for blk in range(sys.blk_start.shape[0]):
         for i in range(sys.blk_start[blk], sys.blk_end[blk]):
             for k in range(sys.blk_start[blk], sys.blk_end[blk]):
                 mat[i, k] = c_m * sys.mass[i, k]
-    _add_beam_tangent(sys, work, q, qd, c_c, c_k)
+    _add_beam_tangent(sys, work, mat, q, qd, c_c, c_k)
     if work.contact_coords.shape[0] > 0:
-        _add_contact_tangent(sys, work, mem, q, qd, q, FD_STEP_Q, c_k)
-        _add_contact_tangent(sys, work, mem, q, qd, qd, FD_STEP_QD, c_c)
+        _add_contact_tangent(sys, work, mat, mem, q, qd, q, FD_STEP_Q, c_k)
+        _add_contact_tangent(sys, work, mat, mem, q, qd, qd, FD_STEP_QD, c_c)
     for r in range(m):
         for i in range(n):
             mat[i, n + r] = work.jac[r, i]

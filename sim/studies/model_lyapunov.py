@@ -13,8 +13,9 @@ import xarray as xr
 
 from sim.analysis.lyapunov import BenettinResult, benettin
 from sim.model.assembly import crank_period, omega
-from sim.run import Integration, SimulationError, diagnose, prepare
-from sim.solve import stepping
+from sim.run import Integration, SimulationError, Snapshot, diagnose, prepare
+from sim.solve.state import CLOCK, Trajectory
+from sim.solve.status import OK
 
 #: default separation d0 of the two trajectories (m, in the metric of :class:`LinkagePropagator`)
 DEFAULT_D0 = 1e-6
@@ -25,6 +26,8 @@ DEFAULT_INTERVAL_REVOLUTIONS = 1 / 32
 #: at the runs' rtol 1e-6 that noise floor lies just below separations of 1e-6 m
 #: (see :func:`linkage_lyapunov`)
 DEFAULT_TOLERANCES = (1e-8, 1e-11)
+#: the fields of the integration's clock (sim.solve.state.CLOCK) packed with a trajectory
+CONTROLLER = ("t", "h", "facold")
 
 
 @dataclass(frozen=True, eq=False)
@@ -54,12 +57,14 @@ class LinkagePropagator:
     @property
     def _sizes(self) -> tuple[int, int, int]:
         integ = self.integration
-        return integ.y.size, integ.mem.size, integ.st.size
+        return integ.y.size, integ.mem.size, len(CONTROLLER)
 
     def pack(self) -> np.ndarray:
-        """The integration's current trajectory state as one array."""
+        """The integration's current trajectory (:class:`sim.solve.state.Trajectory`) as one
+        array."""
         integ = self.integration
-        return np.concatenate([integ.y, integ.mem.ravel(), integ.st])
+        clock = integ.trajectory.clock[0]
+        return np.concatenate([integ.y, integ.mem.ravel(), [clock[k] for k in CONTROLLER]])
 
     def mask(self) -> np.ndarray:
         """True for the continuous entries of a packed state: q and q̇."""
@@ -76,16 +81,19 @@ class LinkagePropagator:
         """The packed state at t + dt from the packed ``state`` at t (``state`` is not changed)."""
         integ = self.integration
         n_y, n_mem, _ = self._sizes
-        integ.y[:] = state[:n_y]
-        integ.mem[:] = state[n_y : n_y + n_mem].reshape(integ.mem.shape)
-        integ.st[:] = state[n_y + n_mem :]
-        if not np.isclose(integ.st[stepping.ST_T], t, rtol=0.0, atol=1e-9 * max(1.0, abs(t))):
-            raise ValueError(f"state is at t = {integ.st[stepping.ST_T]} s, not at t = {t} s")
-        # the stored first stage belongs to the other trajectory (or to the state before its
-        # renormalisation): the integrator re-evaluates it when this flag is down
-        integ.st[stepping.ST_FSAL] = 0.0
+        clock = np.zeros(1, dtype=CLOCK)
+        for k, value in zip(CONTROLLER, state[n_y + n_mem :], strict=True):
+            clock[0][k] = value
+        if not np.isclose(clock[0]["t"], t, rtol=0.0, atol=1e-9 * max(1.0, abs(t))):
+            raise ValueError(f"state is at t = {clock[0]['t']} s, not at t = {t} s")
+        trajectory = Trajectory(
+            y=state[:n_y], mem=state[n_y : n_y + n_mem].reshape(integ.mem.shape), clock=clock
+        )
+        # the carried step data belong to the other trajectory (or to the state before its
+        # renormalisation): restored without them, the integrator re-evaluates them
+        integ.restore(Snapshot(trajectory, carry=None))
         status = integ.advance(t + dt)
-        if status != stepping.OK:
+        if status != OK:
             raise SimulationError(
                 f"scene '{self.scene_name}' (Lyapunov trajectory): {diagnose(integ, status)}"
             )
