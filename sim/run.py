@@ -29,7 +29,7 @@ from sim.results import build_dataset, decode_rows, energy_balance, energy_error
 from sim.solve import stepping
 from sim.solve.dae import Work, make_work, state_size
 from sim.solve.methods import Dopri5, method_of
-from sim.solve.record import record_row, row_width
+from sim.solve.record import peak_width, record_row, row_width
 from sim.solve.state import CLOCK, TALLY, Buffers, Carry, Options, Trajectory, make_carry
 from sim.solve.status import (
     MAX_STEPS,
@@ -176,8 +176,7 @@ def prepare(
     out_t = np.arange(n_out) * (period / per_rev)
     sec_t = np.arange(math.floor(n_rev + 1e-9) + 1) * period
     width = row_width(len(layout.bodies), len(layout.clearance_joints))
-    # |acceleration| of each body's reference point (x, y), |drive torque|, each joint's force
-    n_peaks = 2 * len(layout.bodies) + 1 + len(layout.clearance_joints)
+    n_peaks = peak_width(len(layout.bodies), len(layout.clearance_joints))
     solver = scene["solver"]
     options = Options(
         method=method_of(solver),

@@ -50,9 +50,18 @@ def column_layout(n_bodies: int, n_joints: int) -> Layout:
     return _blocks(recorded(SAMPLE), n_bodies, n_joints, leading=1)
 
 
+def _width(layout: Layout) -> int:
+    return sum(int(np.prod(block, dtype=int)) for _, block in layout.values())
+
+
 def row_width(n_bodies: int, n_joints: int) -> int:
     """Number of columns of one sample row."""
-    return sum(int(np.prod(s, dtype=int)) for _, s in column_layout(n_bodies, n_joints).values())
+    return _width(column_layout(n_bodies, n_joints))
+
+
+def peak_width(n_bodies: int, n_joints: int) -> int:
+    """Number of entries of the integrator's vector of peaks (`peak_layout`)."""
+    return _width(peak_layout(n_bodies, n_joints))
 
 
 def peak_layout(n_bodies: int, n_joints: int) -> Layout:
