@@ -9,6 +9,7 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import FuncFormatter, NullFormatter
 
 from sim.plots import style
+from sim.scene import DEFAULT_MODES
 from sim.studies import fidelity
 
 
@@ -52,13 +53,19 @@ def _setting(case: str, run: xr.Dataset) -> dict:
     elements = sorted(
         {b.get("elements", 2) for b in scene["bodies"].values() if b["kind"] == "beam"}
     )
+    modes = sorted(
+        {b.get("modes", DEFAULT_MODES) for b in scene["bodies"].values() if b["kind"] == "modal"}
+    )
+    links = "beam " + ",".join(map(str, elements)) if elements else "rigid"
+    if modes:
+        links = "modal " + ",".join(map(str, modes)) + ("" if links == "rigid" else " " + links)
     clearances = [name for name, joint in scene["joints"].items() if joint["clearance"] > 0]
     return {
         "case": case,
         "method": scene["solver"]["method"],
         "rtol": scene["solver"]["rtol"],
         "atol": scene["solver"]["atol"],
-        "links": "beam " + ",".join(map(str, elements)) if elements else "rigid",
+        "links": links,
         "clearances": ",".join(clearances),
         "revolutions": scene["simulation"]["revolutions"],
         "output_per_revolution": scene["simulation"]["output_per_revolution"],
