@@ -12,7 +12,13 @@ from test_flexible_sixbar import _low_pass, _run, _share_of_peak, _slider_accele
 from sim.model import modal
 from sim.model.assembly import build_system
 from sim.model.initial import constraint_values
-from sim.model.kinematics import apply_point_force
+from sim.model.kinematics import (
+    add_point_jacobian,
+    apply_point_force,
+    point_position,
+    point_quadratic_acceleration,
+    point_velocity,
+)
 from sim.model.system import POINT_MODAL
 from sim.scene import SceneError, load_scene
 
@@ -179,3 +185,34 @@ def test_modal_links_agree_with_ancf_beams():
         a = _low_pass(reduced.deflection.sel(body=rod).values, rate)[inner]
         b = _low_pass(ancf.deflection.sel(body=rod).values, rate)[inner]
         assert _share_of_peak(a, b) < 0.03
+
+
+def test_modal_point_kinematics_are_consistent():
+    """At a random state of the pinned link with 4 modes, for its end point: the Jacobian
+    and the velocity equal the central differences of the position (step 1e-6: error
+    ~1e-12 against entries of order 1), and the quadratic acceleration term equals the
+    second difference of r along q + q̇ t (q̈ = 0; step 1e-4: truncation ~1e-8 of terms of
+    order 1-10)."""
+    system, layout, _ = _pinned_link(4)
+    rng = np.random.default_rng(1)
+    q = rng.uniform(-0.5, 0.5, system.n)
+    qd = rng.uniform(-2.0, 2.0, system.n)
+    k = layout.points[("link", "end")]
+
+    def position(x):
+        return np.array(point_position(system, k, x))
+
+    jac = np.zeros((2, system.n))
+    add_point_jacobian(system, k, q, 1.0, jac, 0)
+    h = 1e-6
+    numeric = np.array(
+        [(position(q + h * e) - position(q - h * e)) / (2 * h) for e in np.eye(system.n)]
+    ).T
+    np.testing.assert_allclose(jac, numeric, atol=1e-8)
+    np.testing.assert_allclose(point_velocity(system, k, q, qd, 0.0, 0.0), jac @ qd, atol=1e-12)
+    h = 1e-4
+    second = (position(q + h * qd) - 2 * position(q) + position(q - h * qd)) / h**2
+    np.testing.assert_allclose(point_quadratic_acceleration(system, k, q, qd), second, atol=1e-5)
+    gen = np.zeros(system.n)
+    apply_point_force(system, k, q, 3.0, -2.0, 0.0, 0.0, gen)
+    np.testing.assert_allclose(gen, jac.T @ np.array([3.0, -2.0]), atol=1e-12)
