@@ -216,3 +216,29 @@ def test_modal_point_kinematics_are_consistent():
     gen = np.zeros(system.n)
     apply_point_force(system, k, q, 3.0, -2.0, 0.0, 0.0, gen)
     np.testing.assert_allclose(gen, jac.T @ np.array([3.0, -2.0]), atol=1e-12)
+
+
+def test_implicit_method_runs_modal_links():
+    """Generalized-α (its iteration matrix has the modal stiffness and damping) on the undamped
+    modal six-bar, ρ∞ = 1, a quarter revolution: its energy audit falls with the tolerance
+    (measured 1.3e-4, 1.4e-5, 3.5e-6 at rtol 1e-6, 1e-7, 1e-8: the method's O(h²) error, no
+    energy created or lost elsewhere), and its mid-span deflections follow DOPRI5's within
+    10 % of their peaks (measured 1.4–3.7 % at rtol 1e-7: the period error of a second-order
+    method on the ringing 1.2 kHz mode)."""
+    audits = []
+    for rtol in (1e-6, 1e-7):
+        implicit = _run(
+            *MODAL,
+            "solver.method=generalized_alpha",
+            "solver.rho_inf=1.0",
+            f"solver.rtol={rtol}",
+            f"solver.atol={rtol / 100}",
+            revolutions=0.25,
+        )
+        audits.append(abs(implicit.attrs["energy_error_relative"]))
+    assert audits[0] > 3.0 * audits[1]
+    assert audits[1] < 1e-4
+    explicit = _run(*MODAL, "solver.rtol=1e-7", "solver.atol=1e-9", revolutions=0.25)
+    for rod in RODS:
+        a = implicit.deflection.sel(body=rod).values
+        assert _share_of_peak(a, explicit.deflection.sel(body=rod).values) < 0.1
