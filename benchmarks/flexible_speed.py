@@ -12,8 +12,12 @@ revolution of the flagship beside its parts (rigid links with the clearances, be
 with ideal joints) and beside the two ways of taking the ringing out (maximal numerical
 damping ρ∞ = 0, and 1 % modal damping of the beams).
 
+With --modal it prints the real-time factor of the flagship at the default fidelity (rtol
+1e-5) with rod2–rod4 as modal links (DOPRI5; `--modes` modes each, the scene's default if
+not given) beside the ANCF beams of 2 elements (generalized-α), issue 19's comparison.
+
 Usage: python benchmarks/flexible_speed.py [--revolutions N] [--explicit-revolutions M]
-       [--why] [--set key=value ...]
+       [--why] [--modal [--modes K]] [--set key=value ...]
 """
 
 import argparse
@@ -153,6 +157,37 @@ def why(revolutions: float, extra: list[str]) -> None:
         )
 
 
+RODS = ("rod2", "rod3", "rod4")
+FLAGSHIP_DEFAULT_FIDELITY = [
+    "joints.A.clearance=0.5e-3",
+    "joints.B.clearance=0.5e-3",
+    "solver.rtol=1e-5",
+    "solver.atol=1e-7",
+]
+
+
+def modal_against_beams(revolutions: float, modes: int | None, extra: list[str]) -> None:
+    """Real-time factors of the flagship with modal rod2–rod4 (DOPRI5) and with ANCF beams
+    (generalized-α), both at rtol 1e-5 (issue 19)."""
+    modal = [f"bodies.{b}.kind=modal" for b in RODS]
+    if modes is not None:
+        modal += [f"bodies.{b}.modes={modes}" for b in RODS]
+    beams = [f"bodies.{b}.kind=beam" for b in RODS] + [f"bodies.{b}.elements=2" for b in RODS]
+    print(f"flagship: A + B 0.5 mm, 150 rpm, rtol 1e-5, {revolutions:g} revolutions")
+    for label, method, sets in (
+        (f"modal x {modes or 'default'} modes", "dopri5", modal),
+        ("ANCF 2 elements", "generalized_alpha", beams),
+    ):
+        st = run(method, revolutions, [*FLAGSHIP_DEFAULT_FIDELITY, *sets, *extra])
+        print(
+            f"  {label:22s} {method:18s} real-time factor {st['real_time_factor']:.3f}, "
+            f"wall {st['solver_wall_time_s']:.2f} s, steps {st['solver_accepted_steps']} "
+            f"(+{st['solver_rejected_steps']} rejected), "
+            f"{st['solver_accepted_steps'] / revolutions:.0f} steps per revolution, "
+            f"energy error {st['energy_error_relative']:.2e}"
+        )
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--revolutions", type=float, default=2.0)
@@ -163,10 +198,15 @@ def main() -> None:
         help="DOPRI5 resolves the beams' axial modes and is slow: a shorter run",
     )
     parser.add_argument("--why", action="store_true", help="what sets the step count")
+    parser.add_argument("--modal", action="store_true", help="modal links against ANCF beams")
+    parser.add_argument("--modes", type=int, default=None, help="modes per modal link")
     parser.add_argument("--set", dest="extra", action="append", default=[])
     args = parser.parse_args()
     if args.why:
         why(args.revolutions, args.extra)
+        return
+    if args.modal:
+        modal_against_beams(args.revolutions, args.modes, args.extra)
         return
     print("flagship: A + B 0.5 mm, 150 rpm, rod2-rod4 beams x 2 elements, rtol 1e-6")
     for method, revs in (

@@ -87,7 +87,7 @@ MATERIAL = {
 # The defaults are listed for users in README.md ("Scenes"); the ASSUMED ones also in
 # docs/assumptions.md.
 BODY_COMMON = {
-    "kind": Field("str", choices=("rigid", "beam")),
+    "kind": Field("str", choices=("rigid", "beam", "modal")),
     "shape": Field("str", choices=("bar", "block")),
     "material": Field("str"),
     "hint": Field("mapping"),
@@ -99,6 +99,10 @@ BODY_COMMON = {
     "points": Field("mapping", required=False, default={}),
     # ASSUMED ANCF elements of a beam (the paper gives none); unused while rigid
     "elements": Field("int", 1, 64, required=False, default=2),
+    # bending modes of a modal link (docs/model.md, "Modal links"): one is within 1.4 % of the
+    # ANCF beams' deflections on the six-bar at a quarter of the steps of three (0.7 %), whose
+    # higher frequencies DOPRI5 must resolve; at most 4 (sim.model.modal's tabulated modes)
+    "modes": Field("int", 1, 4, required=False, default=1),
     # none, as in the paper
     "damping": Field("mapping", required=False, default={"kind": "none"}),
 }
@@ -440,8 +444,8 @@ def validate_scene(scene: dict, source: str = "<scene>") -> None:
         _check_section(body, spec, where, source)
         _check_name(body["material"], scene["materials"], f"{where}.material", "material", source)
         _check_section(body["hint"], HINT, f"{where}.hint", source)
-        if body["kind"] == "beam" and shape != "bar":
-            raise SceneError(f"scene {source}: '{where}.kind' = 'beam' needs shape 'bar'")
+        if body["kind"] in ("beam", "modal") and shape != "bar":
+            raise SceneError(f"scene {source}: '{where}.kind' = '{body['kind']}' needs shape 'bar'")
         if body["kind"] == "beam" and body["points"]:
             raise SceneError(
                 f"scene {source}: '{where}.points' is not accepted for a beam; "

@@ -1,7 +1,8 @@
 """From a validated scene to a `System`, and the initial state.
 
 Modelling only what a scene needs: a joint whose clearance is 0 becomes an
-ideal constraint, a body of kind 'rigid' three coordinates. `ideal=True` and
+ideal constraint, a body of kind 'rigid' three coordinates, one of kind 'modal'
+three plus its modes (`sim.model.modal`). `ideal=True` and
 `rigid=True` build the all-ideal, all-rigid mechanism of the same scene, which
 the initial position analysis solves and the studies use as the reference.
 """
@@ -11,7 +12,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from sim.model import ancf, beams
+from sim.model import ancf, beams, modal
 from sim.model.contact import (
     corner_stiffness,
     effective_modulus,
@@ -27,6 +28,7 @@ from sim.model.system import (
     CON_ROWS,
     CON_WELD,
     POINT_GROUND,
+    POINT_MODAL,
     POINT_NODE,
     POINT_RIGID,
     SLIDER_LAWS,
@@ -50,6 +52,7 @@ class Layout:
     clearance_joints: list[str]  # revolute clearances first, then translational
     constraint_rows: list[tuple[str, int, int]]  # (joint or 'drive', first row, rows)
     points: dict[tuple[str, str], int] = field(default_factory=dict)
+    modes: dict[str, int] = field(default_factory=dict)  # modal links' mode counts, else 0
 
     def joint_of_row(self, row: int) -> str:
         """The joint (or 'drive') that owns constraint row `row`."""
@@ -123,13 +126,16 @@ def build_system(scene: dict, *, ideal: bool = False, rigid: bool = False) -> tu
     offset: dict[str, int] = {}
     is_beam: dict[str, bool] = {}
     elements: dict[str, int] = {}
+    modes: dict[str, int] = {}
     n = 0
     for name in names:
         beam = bodies[name]["kind"] == "beam" and not rigid
         offset[name] = n
         is_beam[name] = beam
         elements[name] = bodies[name]["elements"] if beam else 0
-        n += 4 * (elements[name] + 1) if beam else 3
+        modal_link = bodies[name]["kind"] == "modal" and not rigid
+        modes[name] = bodies[name]["modes"] if modal_link else 0
+        n += 4 * (elements[name] + 1) if beam else 3 + modes[name]
 
     mass = np.zeros((n, n))
     gravity_force = np.zeros(n)
@@ -139,6 +145,7 @@ def build_system(scene: dict, *, ideal: bool = False, rigid: bool = False) -> tu
     ref_coef = np.zeros((len(names), 4))
     ang_idx = np.zeros((len(names), 2), dtype=np.int64)
     beam_off, beam_nel, beam_f = [], [], []
+    md = _ModalLinks()
     for b, name in enumerate(names):
         body = bodies[name]
         mat = scene["materials"][body["material"]]
@@ -171,19 +178,26 @@ def build_system(scene: dict, *, ideal: bool = False, rigid: bool = False) -> tu
             m, j = body_mass_properties(body, mat)
             mass[o, o] = mass[o + 1, o + 1] = m
             mass[o + 2, o + 2] = j
+            # Mass-normalised modes: unit modal masses (sim.model.modal).
+            for k in range(modes[name]):
+                mass[o + 3 + k, o + 3 + k] = 1.0
             gravity_force[o : o + 2] = m * g
-            blocks.append((o, o + 3))
+            blocks.append((o, o + 3 + modes[name]))
             ref_idx[b] = o
             ref_coef[b, 0] = 1.0
             ang_idx[b] = (o + 2, o + 2)
+            if modes[name]:
+                md.add(b, o, body, mat, modes[name])
 
     points: dict[tuple[str, str], int] = {}
-    pt_kind, pt_off, pt_u = [], [], []
+    pt_kind, pt_off, pt_u, pt_modes, pt_modal = [], [], [], [], []
 
     def point(body: str, pname: str) -> int:
         key = (body, pname)
         if key not in points:
             points[key] = len(pt_kind)
+            pt_modes.append(0)
+            pt_modal.append(np.zeros((2, modal.MAX_MODES)))
             if body == GROUND:
                 pt_kind.append(POINT_GROUND)
                 pt_off.append(0)
@@ -193,9 +207,14 @@ def build_system(scene: dict, *, ideal: bool = False, rigid: bool = False) -> tu
                 pt_off.append(offset[body] + (0 if pname == "start" else 4 * elements[body]))
                 pt_u.append((0.0, 0.0))
             else:
-                pt_kind.append(POINT_RIGID)
+                pt_kind.append(POINT_MODAL if modes[body] else POINT_RIGID)
                 pt_off.append(offset[body])
                 pt_u.append(_local_points(bodies[body])[pname])
+                if modes[body]:
+                    pt_modes[-1] = modes[body]
+                    pt_modal[-1] = modal.point_coefficients(
+                        pt_u[-1], bodies[body]["length"], _rho_a(scene, bodies[body]), modes[body]
+                    )
         return points[key]
 
     con_type, con_row, con_i, con_f = [], [], [], []
@@ -281,6 +300,8 @@ def build_system(scene: dict, *, ideal: bool = False, rigid: bool = False) -> tu
         pt_kind=np.array(pt_kind, dtype=np.int64),
         pt_off=np.array(pt_off, dtype=np.int64),
         pt_u=np.array(pt_u, dtype=float).reshape(-1, 2),
+        pt_modes=np.array(pt_modes, dtype=np.int64),
+        pt_modal=np.array(pt_modal, dtype=float).reshape(-1, 2, modal.MAX_MODES),
         con_type=np.array(con_type, dtype=np.int64),
         con_row=np.array(con_row, dtype=np.int64),
         con_i=np.array(con_i, dtype=np.int64).reshape(-1, 4),
@@ -307,13 +328,55 @@ def build_system(scene: dict, *, ideal: bool = False, rigid: bool = False) -> tu
         beam_nel=np.array(beam_nel, dtype=np.int64),
         beam_f=np.array(beam_f, dtype=float).reshape(-1, 4),
         **_stacked_beam_constants(beam_f),
+        **md.arrays(),
         ref_idx=ref_idx,
         ref_coef=ref_coef,
         ang_idx=ang_idx,
         body_is_beam=np.array([1 if is_beam[nm] else 0 for nm in names], dtype=np.int64),
+        body_modal=np.array([md.index.get(b, -1) for b in range(len(names))], dtype=np.int64),
     )
-    layout = Layout(names, offset, is_beam, elements, rev_names + trans_names, rows, points)
+    layout = Layout(names, offset, is_beam, elements, rev_names + trans_names, rows, points, modes)
     return system, layout
+
+
+def _rho_a(scene: dict, body: dict) -> float:
+    """Mass per unit length ρA (kg/m) of a bar."""
+    return scene["materials"][body["material"]]["density"] * body["section"][0] * body["section"][1]
+
+
+class _ModalLinks:
+    """The modal links' arrays of a `System` (md_*), gathered body by body."""
+
+    def __init__(self) -> None:
+        self.index: dict[int, int] = {}
+        self.rows: list[tuple] = []
+
+    def add(self, b: int, offset: int, body: dict, material: dict, modes: int) -> None:
+        """Body b (coordinates from `offset`), a bar of kind 'modal' with `modes` modes."""
+        length = body["length"]
+        width, height = body["section"]
+        rho_a = material["density"] * width * height
+        ei = material["youngs_modulus"] * width * height**3 / 12.0
+        omega = np.zeros(modal.MAX_MODES)
+        omega[:modes] = modal.frequencies(length, rho_a, ei, modes)
+        shape = np.zeros((3, modal.MAX_MODES))
+        for i, x_bar in enumerate((-0.5 * length, 0.0, 0.5 * length)):
+            shape[i, :modes] = modal.mode_shapes(x_bar, length, rho_a, modes)
+        beta = stiffness_damping_coefficient(body, material)
+        self.index[b] = len(self.rows)
+        self.rows.append((offset, modes, omega, beta, shape, length))
+
+    def arrays(self) -> dict:
+        """The md_* fields of `System`."""
+        cols = list(zip(*self.rows, strict=True)) or [()] * 6
+        return {
+            "md_off": np.array(cols[0], dtype=np.int64),
+            "md_modes": np.array(cols[1], dtype=np.int64),
+            "md_omega": np.array(cols[2], dtype=float).reshape(-1, modal.MAX_MODES),
+            "md_beta": np.array(cols[3], dtype=float),
+            "md_shape": np.array(cols[4], dtype=float).reshape(-1, 3, modal.MAX_MODES),
+            "md_length": np.array(cols[5], dtype=float),
+        }
 
 
 def _stacked_beam_constants(beam_f: list[tuple[float, float, float, float]]) -> dict:

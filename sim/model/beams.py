@@ -1,5 +1,7 @@
 """ANCF beams inside a system: gravity, reference point and the elastic and
-damping forces of every beam (the element kernels live in `sim.model.ancf`).
+damping forces of every beam (the element kernels live in `sim.model.ancf`), and
+of every modal link (`sim.model.modal`), so that the equations of motion see one
+call for the elastic links of either kind.
 
 Cubic Hermite shape functions of the planar ANCF element (Shabana, Dynamics of
 Multibody Systems, 3rd ed., 2005, ch. 7; the paper's eq. 20), ξ = x/l:
@@ -9,7 +11,7 @@ S1 = 1 − 3ξ² + 2ξ³, S2 = l(ξ − 2ξ² + ξ³), S3 = 3ξ² − 2ξ³, S4 
 import numpy as np
 
 from sim.jit import kernel
-from sim.model import ancf
+from sim.model import ancf, modal
 from sim.model.system import BM_DAMPING
 
 
@@ -47,10 +49,9 @@ def beam_gravity_force(rho_a: float, length: float, elements: int, g: np.ndarray
 @kernel
 def beam_forces(sys, q: np.ndarray, qd: np.ndarray, gen: np.ndarray, scratch: np.ndarray):
     """Subtract the elastic forces (and the stiffness-proportional damping forces,
-    where a beam has a damping coefficient) of every beam from `gen`; return
-    (dissipated power W, strain energy J)."""
-    p_diss = 0.0
-    strain = 0.0
+    where a link has a damping coefficient) of every beam and modal link from
+    `gen`; return (dissipated power W, strain energy J)."""
+    p_diss, strain = modal.modal_forces(sys, q, qd, gen)
     for b in range(sys.beam_off.shape[0]):
         o = sys.beam_off[b]
         size = 4 * (sys.beam_nel[b] + 1)
@@ -96,9 +97,9 @@ def _damping_forces(sys, b: int, q: np.ndarray, qd: np.ndarray, out: np.ndarray)
 
 @kernel
 def beam_damping_power(sys, q: np.ndarray, qd: np.ndarray, scratch: np.ndarray) -> float:
-    """The power dissipated by the damping of every beam at (q, q̇), W; the
-    elastic forces, which dissipate nothing, are not evaluated."""
-    power = 0.0
+    """The power dissipated by the damping of every beam and modal link at (q, q̇),
+    W; the elastic forces, which dissipate nothing, are not evaluated."""
+    power = modal.modal_damping_power(sys, qd)
     for b in range(sys.beam_off.shape[0]):
         if sys.beam_f[b, BM_DAMPING] > 0.0:
             power += _damping_forces(sys, b, q, qd, scratch)

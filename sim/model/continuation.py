@@ -103,10 +103,10 @@ def clearance_sizes(system: System) -> np.ndarray:
 
 def _check_same_model(previous: State, system: System, layout: Layout) -> None:
     old, new = previous.layout, layout
-    model = [(b, old.is_beam[b], old.elements.get(b)) for b in old.bodies]
-    if model != [(b, new.is_beam[b], new.elements.get(b)) for b in new.bodies]:
+    model = [(b, old.is_beam[b], old.elements.get(b), old.modes.get(b, 0)) for b in old.bodies]
+    if model != [(b, new.is_beam[b], new.elements.get(b), new.modes.get(b, 0)) for b in new.bodies]:
         raise ContinuationError(
-            "the previous run has other bodies or link models (rigid, beam, elements)"
+            "the previous run has other bodies or link models (rigid, beam, elements, modal, modes)"
         )
     if old.clearance_joints != new.clearance_joints:
         raise ContinuationError(

@@ -15,7 +15,7 @@ from collections.abc import Callable
 import numpy as np
 from scipy.optimize import least_squares
 
-from sim.model import ancf
+from sim.model import ancf, modal
 from sim.model.assembly import AssemblyError, Layout, build_system
 from sim.model.constraints import constraint_terms
 from sim.model.system import System
@@ -135,7 +135,11 @@ def _rigid_motion(scene: dict, layout: Layout) -> tuple[np.ndarray, np.ndarray, 
     so ṙ = Ṙ + u θ̇ e⊥, r̈ = R̈ + u (θ̈ e⊥ − θ̇² e), and likewise r', e⊥ = (−sin θ, cos θ))."""
     q_r, qd_r, system_r, rigid_layout = rigid_initial_state(scene)
     qdd_r = solve_accelerations(system_r, q_r, qd_r)
-    n = sum(4 * (layout.elements[b] + 1) if layout.is_beam[b] else 3 for b in layout.bodies)
+    n = sum(
+        4 * (layout.elements[b] + 1) if layout.is_beam[b] else 3 + layout.modes.get(b, 0)
+        for b in layout.bodies
+    )
+    # A modal link's frame takes the rigid pose and its modes start at rest at zero.
     q, qd, qdd = np.zeros(n), np.zeros(n), np.zeros(n)
     for name in layout.bodies:
         r = rigid_layout.offset[name]
@@ -163,9 +167,11 @@ def _rigid_motion(scene: dict, layout: Layout) -> tuple[np.ndarray, np.ndarray, 
 
 
 def _beam_elastic(system: System, q: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
-    """Elastic forces F (n,) and their Jacobian K (n, n) of every beam at q."""
+    """Elastic forces F (n,) and their Jacobian K (n, n) of every beam and modal link at q."""
     force = np.zeros(system.n)
     stiffness = np.zeros((system.n, system.n))
+    modal.add_modal_tangent(system, stiffness, 0.0, 1.0)
+    force += stiffness @ q
     for b, o in enumerate(system.beam_off):
         size = 4 * (system.beam_nel[b] + 1)
         block = slice(o, o + size)
@@ -264,6 +270,7 @@ def initial_state(scene: dict, system: System, layout: Layout) -> tuple[np.ndarr
     (`straight`), moving with it. AssemblyError when the constraints are redundant."""
     q, qd, qdd = _rigid_motion(scene, layout)
     check_independent(system, layout, q)
-    if any(layout.is_beam.values()) and scene["simulation"]["beam_start"] == "quasi-static":
+    flexible = any(layout.is_beam.values()) or any(layout.modes.values())
+    if flexible and scene["simulation"]["beam_start"] == "quasi-static":
         q, qd = quasi_static_beams(scene, q, qd, qdd)
     return q, qd

@@ -6,6 +6,14 @@ with A(θ) the planar rotation and k × v = (−v_y, v_x). A point on a beam nod
 is the node's position coordinates themselves; a ground point is fixed.
 (Nikravesh, Computer-Aided Analysis of Mechanical Systems, 1988, ch. 6.)
 
+A point of a modal link (`sim.model.modal`) has the body-frame vector
+u = ū + Ψ q_m, linear in the modal amplitudes q_m (Ψ = pt_modal, 2 × k), so
+    r = R + A u,  ṙ = Ṙ + θ̇ k × (A u) + A Ψ q̇_m,
+    r̈ = R̈ + θ̈ k × (A u) + A Ψ q̈_m − θ̇² A u + 2 θ̇ k × (A Ψ q̇_m)
+(Shabana, Dynamics of Multibody Systems, 3rd ed., 2005, ch. 5). A global offset
+turns with the frame angle θ: the section's own small rotation Σ ψ_k′ q_k is
+left out of a contact point's lever (docs/model.md, "Modal links").
+
 `offset` arguments add a global vector to the body-frame point (a contact point
 at a distance from the joint centre); for beam nodes the offset is ignored
 because a node has no rotational coordinate to carry its moment.
@@ -14,7 +22,7 @@ because a node has no rotational coordinate to carry its moment.
 import numpy as np
 
 from sim.jit import kernel, kernel_inline
-from sim.model.system import POINT_GROUND, POINT_RIGID
+from sim.model.system import POINT_GROUND, POINT_MODAL, POINT_NODE
 
 
 @kernel_inline
@@ -25,6 +33,33 @@ def rotate(theta: float, ux: float, uy: float) -> tuple[float, float]:
     return c * ux - s * uy, s * ux + c * uy
 
 
+@kernel_inline
+def _local(sys, k: int, q: np.ndarray) -> tuple[float, float]:
+    """Body-frame vector u (m) of point k on a rigid body or modal link: ū + Ψ q_m."""
+    ux = sys.pt_u[k, 0]
+    uy = sys.pt_u[k, 1]
+    o = sys.pt_off[k] + 3
+    for m in range(sys.pt_modes[k]):
+        ux += sys.pt_modal[k, 0, m] * q[o + m]
+        uy += sys.pt_modal[k, 1, m] * q[o + m]
+    return ux, uy
+
+
+@kernel_inline
+def _modal_velocity(sys, k: int, q: np.ndarray, qd: np.ndarray) -> tuple[float, float]:
+    """A Ψ q̇_m (m/s): the velocity of point k relative to its link's frame, zero
+    for points of other bodies."""
+    vx = 0.0
+    vy = 0.0
+    o = sys.pt_off[k] + 3
+    for m in range(sys.pt_modes[k]):
+        vx += sys.pt_modal[k, 0, m] * qd[o + m]
+        vy += sys.pt_modal[k, 1, m] * qd[o + m]
+    if sys.pt_modes[k] == 0:
+        return vx, vy
+    return rotate(q[sys.pt_off[k] + 2], vx, vy)
+
+
 @kernel
 def point_position(sys, k: int, q: np.ndarray) -> tuple[float, float]:
     """Global position (m) of point k."""
@@ -32,10 +67,11 @@ def point_position(sys, k: int, q: np.ndarray) -> tuple[float, float]:
     if kind == POINT_GROUND:
         return sys.pt_u[k, 0], sys.pt_u[k, 1]
     o = sys.pt_off[k]
-    if kind == POINT_RIGID:
-        ax, ay = rotate(q[o + 2], sys.pt_u[k, 0], sys.pt_u[k, 1])
-        return q[o] + ax, q[o + 1] + ay
-    return q[o], q[o + 1]
+    if kind == POINT_NODE:
+        return q[o], q[o + 1]
+    ux, uy = _local(sys, k, q)
+    ax, ay = rotate(q[o + 2], ux, uy)
+    return q[o] + ax, q[o + 1] + ay
 
 
 @kernel
@@ -47,21 +83,35 @@ def point_velocity(
     if kind == POINT_GROUND:
         return 0.0, 0.0
     o = sys.pt_off[k]
-    if kind == POINT_RIGID:
-        ax, ay = rotate(q[o + 2], sys.pt_u[k, 0], sys.pt_u[k, 1])
-        w = qd[o + 2]
-        return qd[o] - w * (ay + oy), qd[o + 1] + w * (ax + ox)
-    return qd[o], qd[o + 1]
+    if kind == POINT_NODE:
+        return qd[o], qd[o + 1]
+    ux, uy = _local(sys, k, q)
+    ax, ay = rotate(q[o + 2], ux, uy)
+    w = qd[o + 2]
+    vx = qd[o] - w * (ay + oy)
+    vy = qd[o + 1] + w * (ax + ox)
+    if kind == POINT_MODAL:
+        mx, my = _modal_velocity(sys, k, q, qd)
+        vx += mx
+        vy += my
+    return vx, vy
 
 
 @kernel
 def point_quadratic_acceleration(sys, k: int, q: np.ndarray, qd: np.ndarray) -> tuple[float, float]:
-    """The part of r̈ not proportional to q̈: −θ̇² A u for rigid points, zero otherwise."""
-    if sys.pt_kind[k] != POINT_RIGID:
+    """The part of r̈ not proportional to q̈: −θ̇² A u for rigid points, plus
+    2 θ̇ k × (A Ψ q̇_m) for modal points, zero otherwise."""
+    kind = sys.pt_kind[k]
+    if kind == POINT_GROUND or kind == POINT_NODE:
         return 0.0, 0.0
     o = sys.pt_off[k]
-    ax, ay = rotate(q[o + 2], sys.pt_u[k, 0], sys.pt_u[k, 1])
-    w2 = qd[o + 2] * qd[o + 2]
+    ux, uy = _local(sys, k, q)
+    ax, ay = rotate(q[o + 2], ux, uy)
+    w = qd[o + 2]
+    w2 = w * w
+    if kind == POINT_MODAL:
+        mx, my = _modal_velocity(sys, k, q, qd)
+        return -w2 * ax - 2.0 * w * my, -w2 * ay + 2.0 * w * mx
     return -w2 * ax, -w2 * ay
 
 
@@ -74,10 +124,16 @@ def add_point_jacobian(sys, k: int, q: np.ndarray, sign: float, jac: np.ndarray,
     o = sys.pt_off[k]
     jac[row, o] += sign
     jac[row + 1, o + 1] += sign
-    if kind == POINT_RIGID:
-        ax, ay = rotate(q[o + 2], sys.pt_u[k, 0], sys.pt_u[k, 1])
-        jac[row, o + 2] += -sign * ay
-        jac[row + 1, o + 2] += sign * ax
+    if kind == POINT_NODE:
+        return
+    ux, uy = _local(sys, k, q)
+    ax, ay = rotate(q[o + 2], ux, uy)
+    jac[row, o + 2] += -sign * ay
+    jac[row + 1, o + 2] += sign * ax
+    for m in range(sys.pt_modes[k]):
+        px, py = rotate(q[o + 2], sys.pt_modal[k, 0, m], sys.pt_modal[k, 1, m])
+        jac[row, o + 3 + m] += sign * px
+        jac[row + 1, o + 3 + m] += sign * py
 
 
 @kernel
@@ -92,6 +148,11 @@ def apply_point_force(
     o = sys.pt_off[k]
     gen[o] += fx
     gen[o + 1] += fy
-    if kind == POINT_RIGID:
-        ax, ay = rotate(q[o + 2], sys.pt_u[k, 0], sys.pt_u[k, 1])
-        gen[o + 2] += (ax + ox) * fy - (ay + oy) * fx
+    if kind == POINT_NODE:
+        return
+    ux, uy = _local(sys, k, q)
+    ax, ay = rotate(q[o + 2], ux, uy)
+    gen[o + 2] += (ax + ox) * fy - (ay + oy) * fx
+    for m in range(sys.pt_modes[k]):
+        px, py = rotate(q[o + 2], sys.pt_modal[k, 0, m], sys.pt_modal[k, 1, m])
+        gen[o + 3 + m] += px * fx + py * fy

@@ -6,13 +6,17 @@ is data.
 
 Generalized coordinates q (n entries):
   rigid body: (x, y, θ) of its centre of mass, θ the angle of its body frame;
-  ANCF beam: per node (r_x, r_y, ∂r_x/∂x, ∂r_y/∂x).
+  ANCF beam: per node (r_x, r_y, ∂r_x/∂x, ∂r_y/∂x);
+  modal link: (x, y, θ) of its mean-axis frame, then its k modal amplitudes
+              (sim.model.modal).
 
 Points (where joints attach), by kind:
   POINT_GROUND  fixed global position u;
   POINT_RIGID   body-frame vector u from the centre of mass of the rigid body whose
                 coordinates start at `off`;
-  POINT_NODE    position coordinates of a beam node starting at `off` (u unused).
+  POINT_NODE    position coordinates of a beam node starting at `off` (u unused);
+  POINT_MODAL   body-frame vector u from the frame origin of the modal link at `off`,
+                displaced locally by Σ_k pt_modal[:, k] q_k over its pt_modes modes.
 
 Ideal constraints (rows Φ(q, t) = 0), by type, with their integer and float
 parameters (`con_i`, `con_f`):
@@ -32,7 +36,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-POINT_GROUND, POINT_RIGID, POINT_NODE = 0, 1, 2
+POINT_GROUND, POINT_RIGID, POINT_NODE, POINT_MODAL = 0, 1, 2, 3
 
 CON_REVOLUTE, CON_PRISMATIC, CON_DRIVE, CON_CLAMP, CON_CLAMP_NODE, CON_WELD = range(6)
 CON_ROWS = (2, 2, 1, 3, 4, 3)
@@ -73,6 +77,8 @@ class System(NamedTuple):
     pt_kind: np.ndarray  # (np,) point kinds
     pt_off: np.ndarray  # (np,) coordinate offset of the owning body or node
     pt_u: np.ndarray  # (np, 2) body-frame vector or ground position, m
+    pt_modes: np.ndarray  # (np,) modes of the owning modal link, 0 for other points
+    pt_modal: np.ndarray  # (np, 2, MAX_MODES) ∂(local displacement)/∂q_k, see modal.py
     con_type: np.ndarray  # (nc,)
     con_row: np.ndarray  # (nc,) first row of each constraint
     con_i: np.ndarray  # (nc, 4) integer parameters
@@ -92,10 +98,17 @@ class System(NamedTuple):
     beam_axial_w: np.ndarray  # (nbm, ga)
     beam_d2shape: np.ndarray  # (nbm, gb, 4)
     beam_bending_w: np.ndarray  # (nbm, gb)
+    md_off: np.ndarray  # (nmd,) first coordinate (frame x) of each modal link
+    md_modes: np.ndarray  # (nmd,) its number of modes k
+    md_omega: np.ndarray  # (nmd, MAX_MODES) free–free angular frequencies ω_k, rad/s
+    md_beta: np.ndarray  # (nmd,) stiffness-proportional damping coefficient β, s
+    md_shape: np.ndarray  # (nmd, 3, MAX_MODES) ψ_k at start, middle and end, kg^-½
+    md_length: np.ndarray  # (nmd,) link length L, m
     ref_idx: np.ndarray  # (nbody, 4) coordinates combined into each reference point
     ref_coef: np.ndarray  # (nbody, 4) their coefficients (shape functions)
     ang_idx: np.ndarray  # (nbody, 2) angle coordinate (rigid) or chord nodes (beam)
     body_is_beam: np.ndarray  # (nbody,) 1 for beams
+    body_modal: np.ndarray  # (nbody,) index of the modal link (md_*), −1 for other bodies
 
 
 def n_gaps(system: System) -> int:

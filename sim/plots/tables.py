@@ -49,13 +49,17 @@ def _setting(case: str, run: xr.Dataset) -> dict:
     duration and output rate, and what it cost (integrator wall time in s, real-time factor)."""
     scene = scene_of(run)
     elements = sorted({b["elements"] for b in scene["bodies"].values() if b["kind"] == "beam"})
+    modes = sorted({b["modes"] for b in scene["bodies"].values() if b["kind"] == "modal"})
+    links = "beam " + ",".join(map(str, elements)) if elements else "rigid"
+    if modes:
+        links = "modal " + ",".join(map(str, modes)) + ("" if links == "rigid" else " " + links)
     clearances = [name for name, joint in scene["joints"].items() if joint["clearance"] > 0]
     return {
         "case": case,
         "method": scene["solver"]["method"],
         "rtol": scene["solver"]["rtol"],
         "atol": scene["solver"]["atol"],
-        "links": "beam " + ",".join(map(str, elements)) if elements else "rigid",
+        "links": links,
         "clearances": ",".join(clearances),
         "revolutions": scene["simulation"]["revolutions"],
         "output_per_revolution": scene["simulation"]["output_per_revolution"],

@@ -26,6 +26,7 @@ from sim.model.clearance import revolute_clearance_forces, translational_clearan
 from sim.model.constraints import constraint_terms
 from sim.model.system import (
     N_JOINT_OUT,
+    POINT_MODAL,
     POINT_NODE,
     POINT_RIGID,
     System,
@@ -85,13 +86,14 @@ def state_size(system: System) -> int:
 
 
 def contact_coordinates(system: System) -> np.ndarray:
-    """Sorted coordinates of the bodies and nodes that clearance joints touch."""
+    """Sorted coordinates of the bodies and nodes that clearance joints touch (a
+    modal link's frame and modes)."""
     coords = set()
     for pts in system.rj_pts:
         for k in pts:
             o = int(system.pt_off[k])
-            if system.pt_kind[k] == POINT_RIGID:
-                coords.update(range(o, o + 3))
+            if system.pt_kind[k] in (POINT_RIGID, POINT_MODAL):
+                coords.update(range(o, o + 3 + int(system.pt_modes[k])))
             elif system.pt_kind[k] == POINT_NODE:
                 coords.update(range(o, o + 2))
     for o in system.tj_off:

@@ -10,6 +10,7 @@ import numpy as np
 from sim.jit import kernel
 from sim.model import ancf
 from sim.model.clearance import eccentricity, eccentricity_rate, guide_frame
+from sim.model.modal import modal_midspan_deflection
 from sim.model.system import (
     BM_ELEMENT_LENGTH,
     OUT_FRICTION_FORCE,
@@ -137,6 +138,8 @@ def write_row(sys, work, y: np.ndarray, row: np.ndarray) -> None:
         row[c] = 0.0
         if sys.body_is_beam[b] == 1:
             row[c] = beam_midspan_deflection(q, sys, b)
+        elif sys.body_modal[b] >= 0:
+            row[c] = modal_midspan_deflection(sys, sys.body_modal[b], q)
         c += 1
     # drive_torque
     row[c] = work.scalars[SC_DRIVE_TORQUE]

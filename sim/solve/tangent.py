@@ -6,7 +6,8 @@
 with K_t = −∂Q/∂q and C_t = −∂Q/∂q̇ the tangent stiffness and damping of the
 generalized forces Q (gravity is constant and adds nothing):
 - beams: the analytic Jacobians of the elastic and damping forces
-  (`sim.model.ancf`), block by block;
+  (`sim.model.ancf`), block by block; modal links: their diagonal ω_k² and
+  β ω_k² (`sim.model.modal`);
 - clearance contacts: forward differences over the few coordinates the contact
   forces depend on (work.contact_coords), which is as cheap as it is simple
   here: a contact evaluation costs a fraction of a microsecond;
@@ -20,7 +21,7 @@ The constraint Jacobian Φ_q is read from work.jac, evaluated at the same state.
 import numpy as np
 
 from sim.jit import kernel
-from sim.model import ancf
+from sim.model import ancf, modal
 from sim.model.system import BM_DAMPING
 from sim.solve.dae import contact_forces
 
@@ -100,6 +101,7 @@ def iteration_matrix(
             for k in range(sys.blk_start[blk], sys.blk_end[blk]):
                 mat[i, k] = c_m * sys.mass[i, k]
     _add_beam_tangent(sys, work, mat, q, qd, c_c, c_k)
+    modal.add_modal_tangent(sys, mat, c_c, c_k)
     if work.contact_coords.shape[0] > 0:
         _add_contact_tangent(sys, work, mat, mem, q, qd, q, FD_STEP_Q, c_k)
         _add_contact_tangent(sys, work, mat, mem, q, qd, qd, FD_STEP_QD, c_c)

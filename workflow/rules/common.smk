@@ -77,8 +77,12 @@ def link_overrides():
         out.update({f"bodies.{body}.kind": "rigid" for body in model["flexible_bodies"]})
         return out
     for body in model["flexible_bodies"]:
-        out[f"bodies.{body}.kind"] = "beam"
-        out[f"bodies.{body}.elements"] = model["elements"]
+        out[f"bodies.{body}.kind"] = model["links"]
+        if model["links"] == "modal":
+            if "modes" in model:  # else the scene schema's default (sim.scene, bodies.<name>.modes)
+                out[f"bodies.{body}.modes"] = model["modes"]
+        else:
+            out[f"bodies.{body}.elements"] = model["elements"]
     return out
 
 
