@@ -146,37 +146,41 @@ def embedding_lag(x: np.ndarray, max_lag: int | None = None) -> int:
     )
 
 
-def nearest_neighbours(points: np.ndarray, min_tsep: int) -> tuple[np.ndarray, np.ndarray]:
-    """Nearest neighbour of every point among points at least ``min_tsep + 1`` indices away.
+def nearest_neighbours(
+    points: np.ndarray, min_tsep: int, count: int = 1
+) -> tuple[np.ndarray, np.ndarray]:
+    """The ``count`` nearest neighbours of every point among points at least ``min_tsep + 1``
+    indices away, nearest first.
 
-    Uses a k-d tree and asks for more neighbours only for the points whose closest candidates
-    are all temporal neighbours, so the cost stays near one k = 8 query.
+    Uses a k-d tree and asks for more candidates only for the points whose closest candidates
+    are mostly temporal neighbours, so the cost stays near one query of 8 · ``count``.
 
     Args:
         points: array (n, m) of delay vectors in time order.
         min_tsep: Theiler window in samples; |i − j| ≤ min_tsep is excluded (and so is i itself).
+        count: neighbours wanted per point.
 
     Returns:
-        (index, distance) arrays of length n; index −1 and distance inf where no admissible
-        neighbour exists.
+        (index, distance) arrays of shape (n, count); index −1 and distance inf where fewer
+        than ``count`` admissible neighbours exist.
     """
     n = len(points)
     tree = cKDTree(points)
-    index = np.full(n, -1)
-    distance = np.full(n, np.inf)
+    index = np.full((n, count), -1)
+    distance = np.full((n, count), np.inf)
     pending = np.arange(n)
-    k = 8
+    k = 8 * count
     while pending.size:
         k = min(k, n)
         dist, idx = tree.query(points[pending], k=k)
         dist, idx = dist.reshape(len(pending), k), idx.reshape(len(pending), k)
         admissible = np.abs(idx - pending[:, None]) > min_tsep
-        found = admissible.any(axis=1)
-        # query results are sorted by distance, so the first admissible one is the nearest
-        first = np.argmax(admissible, axis=1)
+        # query results are sorted by distance: the first `count` admissible ones are nearest
+        taken = admissible & (np.cumsum(admissible, axis=1) <= count)
+        found = taken.sum(axis=1) == count
         rows = np.nonzero(found)[0]
-        index[pending[rows]] = idx[rows, first[rows]]
-        distance[pending[rows]] = dist[rows, first[rows]]
+        index[pending[rows]] = idx[rows][taken[rows]].reshape(-1, count)
+        distance[pending[rows]] = dist[rows][taken[rows]].reshape(-1, count)
         pending = pending[~found]
         if k == n:
             break
@@ -224,6 +228,7 @@ def false_nearest_neighbours(
         # the extra coordinate x[i + dim * lag] must exist for every vector
         points = delay_embed(x[: len(x) - lag], dim, lag)
         index, distance = nearest_neighbours(points, min_tsep)
+        index, distance = index[:, 0], distance[:, 0]
         valid = (index >= 0) & (distance > 0)
         i, j = np.nonzero(valid)[0], index[valid]
         extra = np.abs(x[i + dim * lag] - x[j + dim * lag])
