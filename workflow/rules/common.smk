@@ -50,10 +50,18 @@ def point_name(sweep, value):
     return f"{sweep['label']}-{value:g}{sweep['unit']}"
 
 
+def sweep_grid(sweep):
+    """The values of a sweep: its `values`, or `range: [start, stop, count]` evenly spaced."""
+    if "values" in sweep:
+        return list(sweep["values"])
+    start, stop, count = sweep["range"]
+    return [start + (stop - start) * k / max(count - 1, 1) for k in range(count)]
+
+
 def sweep_points(name):
     """(point name, value) of every point of a sweep study."""
     sweep = study(name)["sweep"]
-    return [(point_name(sweep, value), value) for value in sweep["values"]]
+    return [(point_name(sweep, value), value) for value in sweep_grid(sweep)]
 
 
 def case_names(name):
@@ -395,6 +403,7 @@ def landing_inputs(wildcards):
         name = enabled(role)
         if name and has(name, "bifurcation"):
             out[f"{role}_table"] = f"results/{name}/tables/bifurcation_lyapunov.csv"
+            out[f"{role}_dataset"] = f"results/{name}/bifurcation.nc"
     name = enabled("cross_check")
     if name and has(name, "crosscheck"):
         out["cross_check_summary"] = f"results/{name}/tables/crosscheck.json"

@@ -168,7 +168,7 @@ rule revolution_table:
 
 rule bifurcation_table:
     input:
-        analyses=analyses_of_study,
+        combined="results/{study}/bifurcation.nc",
     output:
         csv="results/{study}/tables/bifurcation_lyapunov.csv",
         html=report(
@@ -177,9 +177,6 @@ rule bifurcation_table:
             category="{study}",
             subcategory="tables",
         ),
-    params:
-        values=sweep_values,
-        parameter=sweep_parameter,
     conda:
         "../envs/sim.yaml"
     log:
@@ -193,7 +190,6 @@ rule bifurcation_table:
 rule bifurcation_figure:
     input:
         combined="results/{study}/bifurcation.nc",
-        table="results/{study}/tables/bifurcation_lyapunov.csv",
     output:
         report(
             "results/{study}/figures/bifurcation.png",
