@@ -29,6 +29,7 @@ def test_dry_run_full_config():
         "run_ideal",
         "run_tolerant",
         "analyze",
+        "sweep_batch",
         "combine_sweep",
         "revolution_table",
         "landing",
@@ -68,6 +69,21 @@ def _check_file(path: Path) -> None:
         assert len(pd.read_csv(path)) > 0, path
     elif path.suffix == ".json":
         json.loads(path.read_text())
+
+
+def _check_bifurcation(work: Path) -> None:
+    """Each quick sweep point has its model exponent, and each clearance channel its K (a
+    correlation, in [-1, 1]) and a verdict; the clearance-0 point has no channels; the model is named."""
+    import numpy as np
+    import xarray as xr
+
+    with xr.open_dataset(work / "results/bifurcation-clearance/bifurcation.nc") as ds:
+        np.testing.assert_array_equal(ds.parameter.values, [0.0, 5e-4, 1e-3])
+        assert np.isfinite(ds.model_lyapunov_exponent).all()
+        K = ds.zero_one_K.sel(parameter=[5e-4, 1e-3]).values
+        assert np.all(np.abs(K) <= 1)  # a correlation
+        assert (ds.verdict.sel(parameter=0.0) == "").all()
+        assert ds.attrs["model"] == "rigid links, dopri5 rtol 1e-05"
 
 
 def _check_ensembles(work: Path) -> None:
@@ -126,6 +142,7 @@ def test_quick_workflow_end_to_end(tmp_path):
         "results/speed/tables/revolution_statistics.html",
         "results/bifurcation-clearance/figures/bifurcation.png",
         "results/bifurcation-speed/figures/bifurcation.png",
+        "results/bifurcation-clearance/tables/bifurcation_lyapunov.csv",
         "results/fidelity/figures/work_precision.png",
         "results/extremes/tables/extremes.csv",
         "results/report/landing.rst",
@@ -133,6 +150,7 @@ def test_quick_workflow_end_to_end(tmp_path):
     ):
         _check_file(work / name)
     _check_ensembles(work)
+    _check_bifurcation(work)
     report = _snakemake(
         "--configfile", "config/quick.yaml", "--report", "report.html", cwd=work, timeout=300
     )

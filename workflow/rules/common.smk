@@ -436,3 +436,31 @@ def landing_recording(wildcards):
         return {}
     fake = type("Wildcards", (), {"study": name})()
     return {"csv": recording_file(fake), "meta": recording_meta(fake)}
+
+
+# ---------------------------------------------------------------- sweep batches
+def sweep_batches(name):
+    """The points of a sweep study in batches of `sweep.batch` consecutive points."""
+    points = sweep_points(name)
+    size = int(study(name)["sweep"].get("batch", 1))
+    return [points[k : k + size] for k in range(0, len(points), size)]
+
+
+def batch_dirs_of_study(wildcards):
+    """The folder of every batch of a sweep study (its run files and batch.nc)."""
+    count = len(sweep_batches(wildcards.study))
+    return [f"results/{wildcards.study}/sweep/batch-{k}" for k in range(count)]
+
+
+def batch_points(wildcards):
+    """(point name, value) of the points of one batch."""
+    return sweep_batches(wildcards.study)[int(wildcards.batch)]
+
+
+def sweep_base_overrides(wildcards):
+    """The scene overrides shared by every point of a sweep (`key=value` texts): a point's
+    overrides without the swept keys, which the batch sets per point."""
+    name = wildcards.study
+    keys = study(name)["sweep"]["keys"]
+    overrides = case_overrides(name, sweep_points(name)[0][0])
+    return [f"{key}={value}" for key, value in overrides.items() if key not in keys]
