@@ -73,7 +73,8 @@ def _check_file(path: Path) -> None:
 
 def _check_bifurcation(work: Path) -> None:
     """Each quick sweep point has its model exponent, and each clearance channel its K (a
-    correlation, in [-1, 1]) and a verdict; the clearance-0 point has no channels; the model is named."""
+    correlation, in [-1, 1]) and a verdict; the clearance-0 point has no channels; the model
+    is named."""
     import numpy as np
     import xarray as xr
 
