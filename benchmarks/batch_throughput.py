@@ -10,7 +10,8 @@ watch between compiled calls (every quarter revolution; timed by wrapping
 loading, the output Dataset, writing).
 
 The ratio is meaningful on an otherwise idle machine only: other processes take cores from
-the batch but not from the sequential run's one thread.
+the batch but not from the sequential run's one thread. The cores in use (CPU seconds of the
+process per wall second) show on a busy machine too whether the threads ran at once.
 
 Usage: python benchmarks/batch_throughput.py [--points 16] [--workers 2] [--revolutions 5]
        [--indicators]
@@ -44,9 +45,11 @@ def _timed_drift(drift):
     return wrapper
 
 
-def timed_sweep(values, overrides, workers, transient, indicators, out_dir: Path) -> float:
-    """Wall seconds of one sweep over `values`."""
-    start = time.perf_counter()
+def timed_sweep(
+    values, overrides, workers, transient, indicators, out_dir: Path
+) -> tuple[float, float]:
+    """Wall seconds and CPU seconds (all threads of this process) of one sweep over `values`."""
+    start, cpu = time.perf_counter(), time.process_time()
     run_sweep(
         "sixbar",
         overrides,
@@ -58,7 +61,7 @@ def timed_sweep(values, overrides, workers, transient, indicators, out_dir: Path
         workers=workers,
         indicators=indicators,
     )
-    return time.perf_counter() - start
+    return time.perf_counter() - start, time.process_time() - cpu
 
 
 def main() -> None:
@@ -84,9 +87,11 @@ def main() -> None:
         batch_dir.mkdir()
         drift = sim.run.EnergyWatch.drift
         sim.run.EnergyWatch.drift = _timed_drift(drift)
-        alone = timed_sweep(values, overrides, 1, args.transient, indicators, alone_dir)
+        alone, alone_cpu = timed_sweep(values, overrides, 1, args.transient, indicators, alone_dir)
         sim.run.EnergyWatch.drift = drift
-        batch = timed_sweep(values, overrides, args.workers, args.transient, indicators, batch_dir)
+        batch, batch_cpu = timed_sweep(
+            values, overrides, args.workers, args.transient, indicators, batch_dir
+        )
         integrator = 0.0
         for path in sorted(alone_dir.glob("*.nc")):
             with xr.open_dataset(path) as run:
@@ -95,6 +100,12 @@ def main() -> None:
         f"{args.points} points x {args.revolutions:g} revolutions"
         f"{' + model exponent and 0-1 K' if indicators else ''}: one by one {alone:.1f} s, "
         f"{args.workers} threads {batch:.1f} s; throughput ratio {alone / batch:.2f}"
+    )
+    # cores in use: on a busy machine the wall-time ratio says little, but a batch whose
+    # threads ran at once still shows more CPU seconds per wall second than one by one
+    print(
+        f"cores in use (CPU s / wall s): one by one {alone_cpu / alone:.2f}, "
+        f"{args.workers} threads {batch_cpu / batch:.2f}"
     )
     print(
         f"one by one, of {alone:.1f} s: energy watch {WATCH_SECONDS[0]:.2f} s "
