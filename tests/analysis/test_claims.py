@@ -123,3 +123,37 @@ def test_bifurcation_claim_compares_the_ends_of_the_dense_sweeps(tmp_path):
     row = next(r for r in judge_all(inputs, BOOT)[0] if r["claim"].startswith("Chaos grows"))
     assert row["verdict"] == "mixed"
     assert "periodic at 5 of 6 points (not at 0.0005)" in row["evidence"]
+
+
+def test_flagship_chaos_leads_with_the_model_exponent(tmp_path):
+    """With the model-based exponent in the analysis, the evidence gives it first and the
+    per-channel exponents beside it; the claim's signs are still judged per channel."""
+    import numpy as np
+    import xarray as xr
+
+    channels = ["A.x", "A.y", "B.x", "B.y"]
+    analysis = xr.Dataset(
+        {
+            "lyapunov_exponent": ("channel", [80.0, 60.0, 40.0, -5.0]),
+            "verdict": ("channel", ["chaotic", "chaotic", "chaotic", "periodic"]),
+            "section_period": ("channel", [0, 0, 0, 1]),
+            "model_lyapunov_exponent": ((), 120.0),
+            "model_lyapunov_stderr": ((), 4.0),
+        },
+        coords={"channel": channels, "revolution": np.arange(180)},
+        attrs={"transient_revolutions": 20},
+    )
+    path = tmp_path / "analysis.nc"
+    analysis.to_netcdf(path)
+    claims, _ = judge_all({"flagship_analysis": str(path)}, BOOT)
+    row = next(r for r in claims if r["claim"].startswith("At 0.5 mm"))
+    assert row["verdict"] == SUPPORTED
+    assert row["evidence"].startswith("model-based largest exponent of the linkage")
+    assert "120 ± 4 1/s" in row["evidence"]
+    assert "B.y: λ = -5 1/s (periodic, section period 1)" in row["evidence"]
+    analysis.drop_vars(["model_lyapunov_exponent", "model_lyapunov_stderr"]).to_netcdf(
+        tmp_path / "plain.nc"
+    )
+    claims, _ = judge_all({"flagship_analysis": str(tmp_path / "plain.nc")}, BOOT)
+    row = next(r for r in claims if r["claim"].startswith("At 0.5 mm"))
+    assert row["evidence"].startswith("A.x: λ = 80 1/s")
