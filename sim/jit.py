@@ -14,6 +14,10 @@ defines kernels (`cache_directory`): numba checks a cached function against its
 own file only, so after an edit of a kernel it calls (or a `git pull`) it would
 load the caller compiled against the old callee and silently compute with old
 code. A new digest starts a fresh cache instead.
+
+Kernels release the GIL (``nogil``): they touch only the arrays passed to them, so threads
+of one process can integrate independent runs at once (sim.studies.batch) without copying
+them into other processes.
 """
 
 import hashlib
@@ -57,5 +61,5 @@ def _prune(current: Path) -> None:
 numba.config.CACHE_DIR = str(cache_directory())
 _prune(Path(numba.config.CACHE_DIR))
 
-kernel = numba.njit(cache=True, _nrt=False)
-kernel_inline = numba.njit(cache=True, inline="always", _nrt=False)
+kernel = numba.njit(cache=True, nogil=True, _nrt=False)
+kernel_inline = numba.njit(cache=True, nogil=True, inline="always", _nrt=False)

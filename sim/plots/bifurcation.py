@@ -1,4 +1,4 @@
-"""Bifurcation diagrams with the largest Lyapunov exponent beneath."""
+"""Bifurcation diagrams with the model-based Lyapunov exponent and the 0–1 K beneath."""
 
 import numpy as np
 import pandas as pd
@@ -10,28 +10,33 @@ from sim.plots import style
 MM = 1e3
 
 
-def lyapunov_against_parameter(
-    analyses: list[xr.Dataset], values: list[float], parameter: str
-) -> pd.DataFrame:
-    """One row per sweep point and channel: the parameter value, the largest Lyapunov
-    exponent (1/s) with its standard error, the Poincaré period and the verdict. A point
-    whose joints are all ideal (clearance 0) is analysed on body positions instead; its
-    channels are named after bodies."""
+def indicators_table(combined: xr.Dataset) -> pd.DataFrame:
+    """One row per sweep point and clearance channel (joint.axis) of a bifurcation dataset
+    (:func:`sim.analysis.bifurcation.combine_sweep` with indicators): the parameter value, the
+    model-based largest Lyapunov exponent (1/s, of the whole linkage, so the same on every
+    channel of a point) with its standard error, the 0–1 K, the Poincaré period (0: none) and
+    the verdict. A point whose joints are all ideal (clearance 0) has no channels: no rows."""
+    parameter = str(combined.parameter.attrs.get("name", "parameter"))
     rows = []
-    for value, analysis in zip(values, analyses, strict=True):
-        for channel in analysis.channel.values:
-            one = analysis.sel(channel=channel)
-            rows.append(
-                {
-                    parameter: value,
-                    "channel": str(channel),
-                    "quantity": str(one.channel_quantity.item()),
-                    "lyapunov_exponent_per_s": float(one.lyapunov_exponent),
-                    "lyapunov_stderr_per_s": float(one.lyapunov_stderr),
-                    "section_period": int(one.section_period),
-                    "verdict": str(one.verdict.item()),
-                }
-            )
+    for i, value in enumerate(combined.parameter.values):
+        point = combined.isel(parameter=i)
+        for joint in combined.joint.values:
+            for axis in combined.axis.values:
+                channel = point.sel(joint=joint, axis=axis)
+                verdict = str(channel.verdict.item())
+                if not verdict:  # padding: the joint is ideal at this point
+                    continue
+                rows.append(
+                    {
+                        parameter: float(value),
+                        "channel": f"{joint}.{axis}",
+                        "model_lyapunov_exponent_per_s": float(point.model_lyapunov_exponent),
+                        "model_lyapunov_stderr_per_s": float(point.model_lyapunov_stderr),
+                        "zero_one_K": float(channel.zero_one_K),
+                        "section_period": int(channel.section_period),
+                        "verdict": verdict,
+                    }
+                )
     return pd.DataFrame(rows)
 
 
@@ -39,52 +44,51 @@ def _scale(unit: str) -> tuple[float, str]:
     return (MM, "mm") if unit == "m" else (1.0, unit)
 
 
-def plot_bifurcation(
-    combined: xr.Dataset,
-    lyapunov: pd.DataFrame,
-    *,
-    label: str,
-    unit: str,
-    transient: int,
-) -> Figure:
+def plot_bifurcation(combined: xr.Dataset, *, label: str, unit: str, transient: int) -> Figure:
     """Bifurcation diagram of every clearance channel (joint and axis): the Poincaré samples
     of the eccentricity (mm) after ``transient`` revolutions against the swept parameter
-    (in ``unit``, clearances in mm), and beneath each, the largest Lyapunov exponent (1/s)
-    with its standard error; filled markers where the verdict is chaotic. A point where the
-    joint is ideal (clearance 0) has no eccentricity and no exponent for it."""
+    (in ``unit``, clearances in mm); beneath, the model-based largest Lyapunov exponent of the
+    linkage (1/s, band: ± one standard error; filled where the channel's verdict is chaotic),
+    and beneath that the channel's 0–1 K (0 regular, 1 chaotic). A point where the joint is
+    ideal (clearance 0) has no eccentricity, no K and no verdict for it. The title names the
+    link model and integrator that drew the diagram (the dataset's ``model`` attribute)."""
     factor, shown = _scale(unit)
     x = combined.parameter.values * factor
     joints = [str(j) for j in combined.joint.values]
     channels = [(j, a) for j in joints for a in ("x", "y")]
     samples = combined.section_eccentricity.sel(revolution=combined.revolution >= transient)
+    lam = combined.model_lyapunov_exponent.values
+    err = combined.model_lyapunov_stderr.values
+    columns = max(len(channels), 1)
     with style.style():
-        fig = style.figure(2.6 * max(len(channels), 1) + 0.5, 5.2)
-        axes = np.atleast_2d(
-            fig.subplots(2, max(len(channels), 1), sharex=True, height_ratios=(2, 1))
+        fig = style.figure(2.6 * columns + 0.5, 6.4)
+        axes = np.asarray(
+            fig.subplots(3, columns, sharex=True, height_ratios=(2, 1, 1), squeeze=False)
         )
-        if axes.shape[0] != 2:
-            axes = axes.T
         for col, (joint, axis) in enumerate(channels):
-            top, bottom = axes[0, col], axes[1, col]
-            values = samples.sel(joint=joint, axis=axis).values * MM
-            for i, xv in enumerate(x):
-                finite = values[i][np.isfinite(values[i])]
-                top.plot(np.full(finite.size, xv), finite, ".", color="k", ms=style.POINT)
+            top, middle, bottom = axes[:, col]
+            where = {"joint": joint, "axis": axis}
+            values = samples.sel(where).values * MM
+            xs = np.broadcast_to(x[:, None], values.shape)
+            finite = np.isfinite(values)
+            top.plot(xs[finite], values[finite], ".", color="k", ms=style.POINT / 2)
             top.set_title(f"{joint} {axis}")
             top.set_ylabel("Poincaré eccentricity [mm]" if col == 0 else "")
-            rows = lyapunov[lyapunov.channel == f"{joint}.{axis}"]
-            p = rows.iloc[:, 0].to_numpy() * factor
-            lam = rows.lyapunov_exponent_per_s.to_numpy()
-            err = rows.lyapunov_stderr_per_s.to_numpy()
-            chaotic = (rows.verdict == "chaotic").to_numpy()
-            bottom.axhline(0.0, color=style.BOUND, lw=0.8)
-            bottom.errorbar(p, lam, yerr=err, color=style.CLEARANCE, lw=0.8, capsize=2)
-            bottom.plot(p[chaotic], lam[chaotic], "o", color=style.CLEARANCE, ms=4)
-            bottom.plot(p[~chaotic], lam[~chaotic], "o", mfc="white", color=style.CLEARANCE, ms=4)
+            chaotic = combined.verdict.sel(where).values == "chaotic"
+            middle.axhline(0.0, color=style.BOUND, lw=style.LINE)
+            middle.fill_between(x, lam - err, lam + err, color=style.CLEARANCE, alpha=0.25, lw=0)
+            middle.plot(x, lam, color=style.CLEARANCE, lw=style.LINE)
+            middle.plot(x[chaotic], lam[chaotic], "o", color=style.CLEARANCE, ms=style.POINT)
+            middle.set_ylabel("model exponent [1/s]" if col == 0 else "")
+            K = combined.zero_one_K.sel(where).values
+            bottom.axhline(0.5, color=style.BOUND, lw=style.LINE, ls="--")
+            bottom.plot(x, K, ".-", color=style.IDEAL, lw=style.LINE / 2, ms=style.POINT)
+            bottom.set_ylim(-0.1, 1.1)
+            bottom.set_ylabel("0–1 test K" if col == 0 else "")
             bottom.set_xlabel(f"{label} [{shown}]")
-            bottom.set_ylabel("largest Lyapunov exponent [1/s]" if col == 0 else "")
         fig.suptitle(
-            f"{combined.attrs.get('title', 'bifurcation')} "
+            f"{combined.attrs.get('title', 'bifurcation')}: {combined.sizes['parameter']} points, "
+            f"{combined.attrs.get('model', 'model not recorded')}\n"
             f"(filled: verdict chaotic; first {transient} revolutions dropped)"
         )
     return fig

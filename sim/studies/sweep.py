@@ -1,18 +1,72 @@
 """Parameter sweeps: one scene simulated at every value of a parameter, its Poincaré samples
 collected into one bifurcation dataset (``sim sweep``), each value started from its assembled
-state or, by continuation, from the previous value's final state."""
+state or, by continuation, from the previous value's final state; optionally each value's
+chaos indicators (the model exponent, the 0–1 K) beside them. The values may be shared among
+the threads of one process (:mod:`sim.studies.batch`), each a contiguous chunk."""
 
 import json
 from collections.abc import Sequence
+from dataclasses import dataclass
 from pathlib import Path
 
 import xarray as xr
 
-from sim.analysis.bifurcation import SECTION_VARIABLES, combine_sweep
+from sim.analysis.bifurcation import (
+    MIN_SECTION_POINTS,
+    SECTION_VARIABLES,
+    combine_sweep,
+    section_indicators,
+)
 from sim.model.continuation import ContinuationError
 from sim.results import write_netcdf
 from sim.run import simulate_from
 from sim.scene import load_scene
+from sim.studies.batch import contiguous_chunks, run_batch
+from sim.studies.model_lyapunov import linkage_lyapunov
+
+
+@dataclass(frozen=True)
+class Indicators:
+    """The chaos indicators computed at every sweep point.
+
+    Attributes:
+        tolerances: upper bounds on the solver's (rtol, atol) of the model exponent's two
+            trajectories (:func:`sim.studies.model_lyapunov.linkage_lyapunov`); (1, 1) keeps
+            the scene's.
+    """
+
+    tolerances: tuple[float, float]
+
+
+def point_indicators(
+    run: xr.Dataset, scene: dict, transient_revolutions: int, settings: Indicators
+) -> xr.Dataset:
+    """The chaos indicators of one sweep point: the model-based largest Lyapunov exponent
+    (1/s, with its standard error over blocks) of ``scene`` over its ``simulation.revolutions``
+    after ``transient_revolutions`` (from the assembled state, where
+    :func:`~sim.studies.model_lyapunov.linkage_lyapunov` starts), and the channels' 0–1 K,
+    section period and verdict from ``run``
+    (:func:`sim.analysis.bifurcation.section_indicators`)."""
+    result = linkage_lyapunov(
+        scene,
+        revolutions=scene["simulation"]["revolutions"],
+        transient_revolutions=transient_revolutions,
+        tolerances=settings.tolerances,
+    )
+    return section_indicators(run, transient_revolutions, result.exponent, result.stderr)
+
+
+def model_text(scene: dict) -> str:
+    """The link model and integrator of a scene in words, e.g. ``rigid links, dopri5 rtol
+    1e-05`` or ``beams rod2, rod3, rod4 (2 elements), generalized_alpha rtol 1e-05``."""
+    beams = {name: body for name, body in scene["bodies"].items() if body["kind"] == "beam"}
+    if beams:
+        elements = sorted({int(body["elements"]) for body in beams.values()})
+        links = f"beams {', '.join(beams)} ({'/'.join(map(str, elements))} elements)"
+    else:
+        links = "rigid links"
+    solver = scene["solver"]
+    return f"{links}, {solver['method']} rtol {solver['rtol']:g}"
 
 
 def point_file(label: str, value: float) -> str:
@@ -39,6 +93,9 @@ def run_sweep(
     transient_revolutions: int,
     continuation: bool = False,
     progress: bool = False,
+    workers: int = 1,
+    indicators: Indicators | None = None,
+    file_names: Sequence[str] | None = None,
 ) -> xr.Dataset:
     """Simulate a scene at every value of a parameter and stack the Poincaré samples.
 
@@ -57,6 +114,11 @@ def run_sweep(
     differs (a clearance of 0 makes the joint ideal) starts assembled. Each run's
     ``initial_state`` attribute says which, and why.
 
+    With ``workers`` > 1 the values are split into that many contiguous chunks
+    (:func:`sim.studies.batch.contiguous_chunks`), run by as many threads of this process
+    (:func:`sim.studies.batch.run_batch`); continuation runs along each chunk, so the first
+    value of a chunk starts assembled. Each chunk computes bitwise what it computes alone.
+
     Args:
         scene_source: built-in scene name or YAML path.
         overrides: ``dotted.key=value`` overrides applied to every point.
@@ -65,9 +127,12 @@ def run_sweep(
         out_dir: folder of the per-value run files.
         label: short name of the parameter, used in file names.
         transient_revolutions: revolutions a reader should drop before plotting; recorded
-            in the combined dataset (every revolution is kept).
-        continuation: start each value from the previous value's final state.
+            in the combined dataset (every revolution is kept); the indicators drop them.
+        continuation: start each value from the previous value's final state (in its chunk).
         progress: show each run's progress line.
+        workers: threads, each carrying a contiguous chunk of the values.
+        indicators: compute each value's chaos indicators (:func:`point_indicators`).
+        file_names: the run file of each value in ``out_dir`` (default ``point_file``).
 
     Returns:
         The bifurcation dataset of :func:`sim.analysis.bifurcation.combine_sweep` (dimension
@@ -77,17 +142,75 @@ def run_sweep(
         raise ValueError("sim sweep: give at least one --key to sweep")
     if not values:
         raise ValueError("sim sweep: give at least one value")
+    if file_names is None:
+        file_names = [point_file(label, value) for value in values]
+    if len(file_names) != len(values):
+        raise ValueError(f"sim sweep: {len(file_names)} file names for {len(values)} values")
     scenes = [load_scene(scene_source, [*overrides, *point_overrides(keys, v)]) for v in values]
+    need = transient_revolutions + (MIN_SECTION_POINTS if indicators else 1)
     for scene in scenes:
         revolutions = scene["simulation"]["revolutions"]
-        if revolutions <= transient_revolutions:
+        if revolutions < need:
             raise ValueError(
-                f"sim sweep: simulation.revolutions = {revolutions:g} must exceed the "
-                f"transient of {transient_revolutions} revolutions"
+                f"sim sweep: simulation.revolutions = {revolutions:g} must be at least the "
+                f"transient of {transient_revolutions} revolutions + "
+                f"{need - transient_revolutions}"
+                + (" (section points of the indicators)" if indicators else "")
             )
-    sections, paths = [], []
+    paths = [Path(out_dir) / name for name in file_names]
+
+    def chunk_task(chunk: range):
+        def task() -> list[tuple[xr.Dataset, xr.Dataset | None]]:
+            return _run_chunk(
+                [scenes[i] for i in chunk],
+                [values[i] for i in chunk],
+                [paths[i] for i in chunk],
+                label=label,
+                transient_revolutions=transient_revolutions,
+                continuation=continuation,
+                progress=progress and workers == 1,
+                indicators=indicators,
+            )
+
+        return task
+
+    chunks = contiguous_chunks(len(values), workers)
+    points = [
+        point for done in run_batch([chunk_task(c) for c in chunks], workers) for point in done
+    ]
+    combined = combine_sweep(
+        [section for section, _ in points],
+        ",".join(keys),
+        values,
+        [extra for _, extra in points] if indicators else None,
+    )
+    combined.attrs.update(
+        scene=scene_source,
+        overrides=json.dumps(list(overrides)),
+        transient_revolutions=transient_revolutions,
+        continuation=int(continuation),
+        model=model_text(scenes[0]),
+        runs=" ".join(str(path) for path in paths),
+    )
+    return combined
+
+
+def _run_chunk(
+    scenes: Sequence[dict],
+    values: Sequence[float],
+    paths: Sequence[Path],
+    *,
+    label: str,
+    transient_revolutions: int,
+    continuation: bool,
+    progress: bool,
+    indicators: Indicators | None,
+) -> list[tuple[xr.Dataset, xr.Dataset | None]]:
+    """Run consecutive sweep values in order, continuing along them if asked; write each run
+    and return each value's section variables and indicators (None without ``indicators``)."""
+    points = []
     final, previous_value = None, None
-    for scene, value in zip(scenes, values, strict=True):
+    for scene, value, path in zip(scenes, values, paths, strict=True):
         start, origin = None, "assembled"
         if continuation and final is not None:
             start, origin = final, f"continued from {label} = {previous_value:g}"
@@ -98,14 +221,9 @@ def run_sweep(
             origin = f"assembled: no continuation from {label} = {previous_value:g}, {why}"
         run.attrs["initial_state"] = origin
         previous_value = value
-        paths.append(write_netcdf(run, Path(out_dir) / point_file(label, value)))
-        sections.append(run[list(SECTION_VARIABLES)])
-    combined = combine_sweep(sections, ",".join(keys), values)
-    combined.attrs.update(
-        scene=scene_source,
-        overrides=json.dumps(list(overrides)),
-        transient_revolutions=transient_revolutions,
-        continuation=int(continuation),
-        runs=" ".join(str(path) for path in paths),
-    )
-    return combined
+        write_netcdf(run, path)
+        extra = (
+            point_indicators(run, scene, transient_revolutions, indicators) if indicators else None
+        )
+        points.append((run[list(SECTION_VARIABLES)], extra))
+    return points

@@ -77,3 +77,83 @@ def test_peak_claims_are_tests_with_intervals(tmp_path):
 def test_nothing_run_evaluates_nothing():
     claims, _ = judge_all({}, BOOT)
     assert {row["verdict"] for row in claims} == {NOT_EVALUATED}
+
+
+def _sweep_table(tmp_path, name: str, by_y: list[str]) -> str:
+    """bifurcation_lyapunov.csv of a 6-point sweep: A.x periodic with a negative model exponent
+    over the lower half, chaotic with a positive one over the upper half; B.y as given."""
+    rows = []
+    for k, verdict in enumerate(by_y):
+        chaotic = k >= 3
+        exponent = 40.0 if chaotic else -5.0
+        for channel, channel_verdict in (
+            ("A.x", "chaotic" if chaotic else "periodic"),
+            ("B.y", verdict),
+        ):
+            rows.append(
+                {
+                    "joints.A.clearance": 1e-4 * (k + 1),
+                    "channel": channel,
+                    "model_lyapunov_exponent_per_s": exponent,
+                    "model_lyapunov_stderr_per_s": 2.0,
+                    "zero_one_K": 0.9 if channel_verdict == "chaotic" else 0.05,
+                    "section_period": 1 if channel_verdict == "periodic" else 0,
+                    "verdict": channel_verdict,
+                }
+            )
+    path = tmp_path / f"{name}.csv"
+    pd.DataFrame(rows).to_csv(path, index=False)
+    return str(path)
+
+
+def test_bifurcation_claim_compares_the_ends_of_the_dense_sweeps(tmp_path):
+    """Chaos at the highest third against the lowest, and B y periodic at every point: both
+    sweeps so, supported; B y chaotic at one point of one sweep, mixed."""
+    periodic = ["periodic"] * 6
+    inputs = {
+        "bifurcation_clearance_table": _sweep_table(tmp_path, "clearance", periodic),
+        "bifurcation_speed_table": _sweep_table(tmp_path, "speed", periodic),
+    }
+    row = next(r for r in judge_all(inputs, BOOT)[0] if r["claim"].startswith("Chaos grows"))
+    assert row["verdict"] == SUPPORTED
+    assert "0.0001 to 0.0002 (2 points): 0.00 of the channels chaotic" in row["evidence"]
+    assert "B y periodic at 6 of 6 points" in row["evidence"]
+    one_off = ["periodic"] * 4 + ["chaotic", "periodic"]
+    inputs["bifurcation_speed_table"] = _sweep_table(tmp_path, "speed2", one_off)
+    row = next(r for r in judge_all(inputs, BOOT)[0] if r["claim"].startswith("Chaos grows"))
+    assert row["verdict"] == "mixed"
+    assert "periodic at 5 of 6 points (not at 0.0005)" in row["evidence"]
+
+
+def test_flagship_chaos_leads_with_the_model_exponent(tmp_path):
+    """With the model-based exponent in the analysis, the evidence gives it first and the
+    per-channel exponents beside it; the claim's signs are still judged per channel."""
+    import numpy as np
+    import xarray as xr
+
+    channels = ["A.x", "A.y", "B.x", "B.y"]
+    analysis = xr.Dataset(
+        {
+            "lyapunov_exponent": ("channel", [80.0, 60.0, 40.0, -5.0]),
+            "verdict": ("channel", ["chaotic", "chaotic", "chaotic", "periodic"]),
+            "section_period": ("channel", [0, 0, 0, 1]),
+            "model_lyapunov_exponent": ((), 120.0),
+            "model_lyapunov_stderr": ((), 4.0),
+        },
+        coords={"channel": channels, "revolution": np.arange(180)},
+        attrs={"transient_revolutions": 20},
+    )
+    path = tmp_path / "analysis.nc"
+    analysis.to_netcdf(path)
+    claims, _ = judge_all({"flagship_analysis": str(path)}, BOOT)
+    row = next(r for r in claims if r["claim"].startswith("At 0.5 mm"))
+    assert row["verdict"] == SUPPORTED
+    assert row["evidence"].startswith("model-based largest exponent of the linkage")
+    assert "120 ± 4 1/s" in row["evidence"]
+    assert "B.y: λ = -5 1/s (periodic, section period 1)" in row["evidence"]
+    analysis.drop_vars(["model_lyapunov_exponent", "model_lyapunov_stderr"]).to_netcdf(
+        tmp_path / "plain.nc"
+    )
+    claims, _ = judge_all({"flagship_analysis": str(tmp_path / "plain.nc")}, BOOT)
+    row = next(r for r in claims if r["claim"].startswith("At 0.5 mm"))
+    assert row["evidence"].startswith("A.x: λ = 80 1/s")

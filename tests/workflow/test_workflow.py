@@ -29,6 +29,7 @@ def test_dry_run_full_config():
         "run_ideal",
         "run_tolerant",
         "analyze",
+        "sweep_batch",
         "combine_sweep",
         "revolution_table",
         "landing",
@@ -85,6 +86,22 @@ def _check_file(path: Path) -> None:
         json.loads(path.read_text())
 
 
+def _check_bifurcation(work: Path) -> None:
+    """Each quick sweep point has its model exponent, and each clearance channel its K (a
+    correlation, in [-1, 1]) and a verdict; the clearance-0 point has no channels; the model
+    is named."""
+    import numpy as np
+    import xarray as xr
+
+    with xr.open_dataset(work / "results/bifurcation-clearance/bifurcation.nc") as ds:
+        np.testing.assert_array_equal(ds.parameter.values, [0.0, 5e-4, 1e-3])
+        assert np.isfinite(ds.model_lyapunov_exponent).all()
+        K = ds.zero_one_K.sel(parameter=[5e-4, 1e-3]).values
+        assert np.all(np.abs(K) <= 1)  # a correlation
+        assert (ds.verdict.sel(parameter=0.0) == "").all()
+        assert ds.attrs["model"] == "rigid links, dopri5 rtol 1e-05"
+
+
 def _check_ensembles(work: Path) -> None:
     """Every member of the quick configuration's peaks studies is recorded with its index,
     seed and perturbation, and the claims on peaks are tests with intervals."""
@@ -125,7 +142,8 @@ def test_quick_workflow_end_to_end(tmp_path):
     expected = [
         path
         for path in (work / "results").rglob("*")
-        if path.is_file() and "benchmarks" not in path.parts
+        # Snakemake marks a directory output (a sweep batch) with an empty timestamp file
+        if path.is_file() and "benchmarks" not in path.parts and path.name != ".snakemake_timestamp"
     ]
     kinds = {path.suffix for path in expected}
     assert {".nc", ".png", ".csv", ".html", ".json", ".rst"} <= kinds
@@ -141,6 +159,7 @@ def test_quick_workflow_end_to_end(tmp_path):
         "results/speed/tables/revolution_statistics.html",
         "results/bifurcation-clearance/figures/bifurcation.png",
         "results/bifurcation-speed/figures/bifurcation.png",
+        "results/bifurcation-clearance/tables/bifurcation_lyapunov.csv",
         "results/fidelity/figures/work_precision.png",
         "results/extremes/tables/extremes.csv",
         "results/report/landing.rst",
@@ -148,6 +167,7 @@ def test_quick_workflow_end_to_end(tmp_path):
     ):
         _check_file(work / name)
     _check_ensembles(work)
+    _check_bifurcation(work)
     report = _snakemake(
         "--configfile", "config/quick.yaml", "--report", "report.html", cwd=work, timeout=300
     )

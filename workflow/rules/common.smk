@@ -51,10 +51,18 @@ def point_name(sweep, value):
     return f"{sweep['label']}-{value:g}{sweep['unit']}"
 
 
+def sweep_grid(sweep):
+    """The values of a sweep: its `values`, or `range: [start, stop, count]` evenly spaced."""
+    if "values" in sweep:
+        return list(sweep["values"])
+    start, stop, count = sweep["range"]
+    return [start + (stop - start) * k / max(count - 1, 1) for k in range(count)]
+
+
 def sweep_points(name):
     """(point name, value) of every point of a sweep study."""
     sweep = study(name)["sweep"]
-    return [(point_name(sweep, value), value) for value in sweep["values"]]
+    return [(point_name(sweep, value), value) for value in sweep_grid(sweep)]
 
 
 def case_names(name):
@@ -394,6 +402,7 @@ def landing_inputs(wildcards):
         name = enabled(role)
         if name and has(name, "bifurcation"):
             out[f"{role}_table"] = path("bifurcation_lyapunov_csv", study=name)
+            out[f"{role}_dataset"] = path("bifurcation", study=name)
     name = enabled("cross_check")
     if name and has(name, "crosscheck"):
         out["cross_check_summary"] = path("crosscheck_summary", study=name)
@@ -425,3 +434,31 @@ def landing_recording(wildcards):
         return {}
     fake = type("Wildcards", (), {"study": name})()
     return {"csv": recording_file(fake), "meta": recording_meta(fake)}
+
+
+# ---------------------------------------------------------------- sweep batches
+def sweep_batches(name):
+    """The points of a sweep study in batches of `sweep.batch` consecutive points."""
+    points = sweep_points(name)
+    size = int(study(name)["sweep"].get("batch", 1))
+    return [points[k : k + size] for k in range(0, len(points), size)]
+
+
+def batch_dirs_of_study(wildcards):
+    """The folder of every batch of a sweep study (its run files and batch.nc)."""
+    count = len(sweep_batches(wildcards.study))
+    return [path("sweep_batch", study=wildcards.study, batch=k) for k in range(count)]
+
+
+def batch_points(wildcards):
+    """(point name, value) of the points of one batch."""
+    return sweep_batches(wildcards.study)[int(wildcards.batch)]
+
+
+def sweep_base_overrides(wildcards):
+    """The scene overrides shared by every point of a sweep (`key=value` texts): a point's
+    overrides without the swept keys, which the batch sets per point."""
+    name = wildcards.study
+    keys = study(name)["sweep"]["keys"]
+    overrides = case_overrides(name, sweep_points(name)[0][0])
+    return [f"{key}={value}" for key, value in overrides.items() if key not in keys]

@@ -170,35 +170,31 @@ rule revolution_table:
 
 rule bifurcation_table:
     input:
-        analyses=analyses_of_study,
+        combined=PATHS["bifurcation"],
     output:
-        csv="results/{study}/tables/bifurcation_lyapunov.csv",
+        csv=PATHS["bifurcation_lyapunov_csv"],
         html=report(
-            "results/{study}/tables/bifurcation_lyapunov.html",
+            PATHS["bifurcation_lyapunov_html"],
             caption="../report/bifurcation_lyapunov.rst",
             category="{study}",
             subcategory="tables",
         ),
-    params:
-        values=sweep_values,
-        parameter=sweep_parameter,
     conda:
         "../envs/sim.yaml"
     log:
-        "logs/{study}/tables/bifurcation_lyapunov.log",
+        log_file("bifurcation_table"),
     benchmark:
-        "results/benchmarks/{study}/tables/bifurcation_lyapunov.tsv"
+        benchmark_file("bifurcation_table")
     script:
         "../scripts/figures.py"
 
 
 rule bifurcation_figure:
     input:
-        combined="results/{study}/bifurcation.nc",
-        table="results/{study}/tables/bifurcation_lyapunov.csv",
+        combined=PATHS["bifurcation"],
     output:
         report(
-            "results/{study}/figures/bifurcation.png",
+            PATHS["bifurcation_figure"],
             caption="../report/bifurcation.rst",
             category="{study}",
             subcategory="figures",
@@ -209,9 +205,9 @@ rule bifurcation_figure:
     conda:
         "../envs/sim.yaml"
     log:
-        "logs/{study}/figures/bifurcation.log",
+        log_file("bifurcation_figure"),
     benchmark:
-        "results/benchmarks/{study}/figures/bifurcation.tsv"
+        benchmark_file("bifurcation_figure")
     script:
         "../scripts/figures.py"
 

@@ -18,7 +18,8 @@ PATHS = {
     "status": f"{STUDY}/status/{{case}}.json",
     # stage 2: chaos analysis (analyze.smk)
     "analysis": f"{STUDY}/analysis/{{case}}.nc",
-    # stage 3: sweeps (sweep.smk)
+    # stage 3: sweeps (sweep.smk): a batch folder holds its points' run files and batch.nc
+    "sweep_batch": f"{STUDY}/sweep/batch-{{batch}}",
     "bifurcation": f"{STUDY}/bifurcation.nc",
     # stage 4: experiment (experiment.smk)
     "synthetic_recording": f"{STUDY}/recording/synthetic.csv",
@@ -67,6 +68,7 @@ JOBS = {
     "run_ideal": "{study}/ideal/{case}",
     "run_tolerant": "{study}/status/{case}",
     "analyze": "{study}/analysis/{case}",
+    "sweep_batch": "{study}/sweep/batch-{batch}",
     "combine_sweep": "{study}/bifurcation",
     "synthesize_recording": "{study}/recording/synthetic",
     "compare_experiment": "{study}/comparison/{case}",

@@ -59,18 +59,16 @@ def rule_peaks_table(sm) -> None:
 
 
 def rule_bifurcation_table(sm) -> None:
-    analyses = [_open(path) for path in sm.input.analyses]
-    table = bifurcation.lyapunov_against_parameter(
-        analyses, list(sm.params.values), sm.params.parameter
-    )
-    _write_table(table, sm.output, f"Lyapunov exponent against {sm.params.parameter}")
+    combined = _open(sm.input.combined)
+    table = bifurcation.indicators_table(combined)
+    parameter = combined.parameter.attrs.get("name", "parameter")
+    _write_table(table, sm.output, f"Model exponent, 0-1 K and verdicts against {parameter}")
 
 
 def rule_bifurcation_figure(sm) -> None:
     sweep = sm.params.sweep
     fig = bifurcation.plot_bifurcation(
         _open(sm.input.combined),
-        pd.read_csv(sm.input.table),
         label=sweep["label"],
         unit=sweep["unit"],
         transient=int(sm.params.transient),
