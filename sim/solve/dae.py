@@ -83,6 +83,7 @@ class Work(NamedTuple):
     fd_gen: np.ndarray  # (n,) contact forces at a perturbed state, or evaluated aside
     fd_jout: np.ndarray  # (joints, N_JOINT_OUT) their discarded outputs
     contact_coords: np.ndarray  # coordinates the clearance contact forces depend on
+    schur_pairs: np.ndarray  # (p, 2) rows (i, j ≤ i) of Φ_q that share a mass block
 
 
 def state_size(system: System) -> int:
@@ -119,6 +120,15 @@ def jacobian_pattern(system: System) -> tuple[np.ndarray, np.ndarray]:
     for i, r in enumerate(rows):
         cols[i, : r.size] = r
     return cols, np.array([r.size for r in rows], dtype=np.int64)
+
+
+def schur_pattern(jac_cols: np.ndarray, jac_ncols: np.ndarray, col_block: np.ndarray) -> np.ndarray:
+    """The entries (i, j ≤ i) of the Schur complement Φ_q M⁻¹ Φ_qᵀ that can be
+    nonzero: M⁻¹ is block diagonal, so rows i and j couple only when they touch a
+    common mass block (a chain of joints couples each row to few others)."""
+    blocks = [set(col_block[jac_cols[r, : jac_ncols[r]]].tolist()) for r in range(jac_ncols.size)]
+    pairs = [(i, j) for i in range(len(blocks)) for j in range(i + 1) if blocks[i] & blocks[j]]
+    return np.array(pairs, dtype=np.int64).reshape(-1, 2)
 
 
 def make_work(system: System) -> Work:
@@ -168,6 +178,7 @@ def make_work(system: System) -> Work:
         fd_gen=np.zeros(n),
         fd_jout=np.zeros((n_clearance_joints(system), N_JOINT_OUT)),
         contact_coords=contact_coordinates(system),
+        schur_pairs=schur_pattern(jac_cols, jac_ncols, col_block),
     )
 
 
@@ -259,15 +270,19 @@ def factor_schur(sys, work) -> int:
             blk = work.col_block[k]
             for i in range(sys.blk_start[blk], sys.blk_end[blk]):
                 y_mt[i, r] += sys.mass_inv[i, k] * jac[r, k]
+    # Only the entries that can be nonzero (work.schur_pairs) are summed; the
+    # others are exact zeros, so S is the same to the bit.
     schur = work.schur
-    for i in range(m):
-        for j in range(i + 1):
-            acc = 0.0
-            for c in range(work.jac_ncols[i]):
-                k = cols[i, c]
-                acc += jac[i, k] * y_mt[k, j]
-            schur[i, j] = acc
-            schur[j, i] = acc
+    schur[:, :] = 0.0
+    for p in range(work.schur_pairs.shape[0]):
+        i = work.schur_pairs[p, 0]
+        j = work.schur_pairs[p, 1]
+        acc = 0.0
+        for c in range(work.jac_ncols[i]):
+            k = cols[i, c]
+            acc += jac[i, k] * y_mt[k, j]
+        schur[i, j] = acc
+        schur[j, i] = acc
     return OK if cholesky_in_place(schur, m) else SINGULAR
 
 
