@@ -9,8 +9,13 @@ Mechanical Systems, 1989). Constraint types are listed in `sim.model.system`.
 
 import numpy as np
 
-from sim.jit import kernel
-from sim.model.kinematics import add_point_jacobian, point_position, point_quadratic_acceleration
+from sim.jit import kernel, kernel_inline
+from sim.model.kinematics import (
+    add_point_jacobian,
+    point_position,
+    point_quadratic_acceleration,
+    rotate,
+)
 from sim.model.system import (
     CON_CLAMP,
     CON_CLAMP_NODE,
@@ -18,7 +23,29 @@ from sim.model.system import (
     CON_PRISMATIC,
     CON_REVOLUTE,
     CON_WELD,
+    POINT_RIGID,
 )
+
+
+@kernel_inline
+def _point_terms(sys, k, q, qd, sign, jac, row):
+    """Position of point k, sign·∂r_k/∂q added into rows (row, row+1) of `jac`, and
+    the quadratic acceleration term: the three of `sim.model.kinematics` with a
+    rigid point's rotation A(θ) u evaluated once, not three times, in the same
+    arithmetic."""
+    if sys.pt_kind[k] != POINT_RIGID:
+        x, y = point_position(sys, k, q)
+        add_point_jacobian(sys, k, q, sign, jac, row)
+        ax, ay = point_quadratic_acceleration(sys, k, q, qd)
+        return x, y, ax, ay
+    o = sys.pt_off[k]
+    ax, ay = rotate(q[o + 2], sys.pt_u[k, 0], sys.pt_u[k, 1])
+    jac[row, o] += sign
+    jac[row + 1, o + 1] += sign
+    jac[row, o + 2] += -sign * ay
+    jac[row + 1, o + 2] += sign * ax
+    w2 = qd[o + 2] * qd[o + 2]
+    return q[o] + ax, q[o + 1] + ay, -w2 * ax, -w2 * ay
 
 
 @kernel
@@ -26,14 +53,11 @@ def _coincident_points(sys, c, row, q, qd, phi, jac, gamma):
     """Rows (row, row+1): point i1 minus point i0."""
     p0 = sys.con_i[c, 0]
     p1 = sys.con_i[c, 1]
-    x0, y0 = point_position(sys, p0, q)
-    x1, y1 = point_position(sys, p1, q)
+    # Point i1's Jacobian is added first, as it always was.
+    x1, y1, a1x, a1y = _point_terms(sys, p1, q, qd, 1.0, jac, row)
+    x0, y0, a0x, a0y = _point_terms(sys, p0, q, qd, -1.0, jac, row)
     phi[row] = x1 - x0
     phi[row + 1] = y1 - y0
-    add_point_jacobian(sys, p1, q, 1.0, jac, row)
-    add_point_jacobian(sys, p0, q, -1.0, jac, row)
-    a0x, a0y = point_quadratic_acceleration(sys, p0, q, qd)
-    a1x, a1y = point_quadratic_acceleration(sys, p1, q, qd)
     gamma[row] = a0x - a1x
     gamma[row + 1] = a0y - a1y
 

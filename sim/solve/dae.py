@@ -78,6 +78,10 @@ class Work(NamedTuple):
     fd_gen: np.ndarray  # (n,) contact forces at a perturbed state, or evaluated aside
     fd_jout: np.ndarray  # (joints, N_JOINT_OUT) their discarded outputs
     contact_coords: np.ndarray  # coordinates the clearance contact forces depend on
+    schur_pairs: np.ndarray  # (p, 2) rows (i, j ≤ i) of Φ_q that share a mass block
+    schur_first: np.ndarray  # (m,) first column where row i of S (and of its factor) can be nonzero
+    coord_rows: np.ndarray  # (n, k) the rows of Φ_q that touch each coordinate's mass block
+    coord_nrows: np.ndarray  # (n,) how many
 
 
 def state_size(system: System) -> int:
@@ -117,6 +121,31 @@ def jacobian_pattern(system: System) -> tuple[np.ndarray, np.ndarray]:
     return cols, np.array([r.size for r in rows], dtype=np.int64)
 
 
+def constraint_sparsity(
+    jac_cols: np.ndarray, jac_ncols: np.ndarray, col_block: np.ndarray
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """Where the products of `factor_schur` can be nonzero. M⁻¹ is block diagonal, so
+    rows i and j of Φ_q couple in S = Φ_q M⁻¹ Φ_qᵀ only when they touch a common mass
+    block (a chain of joints couples each row to few others), and row i of M⁻¹ Φ_qᵀ
+    is nonzero only in the rows of Φ_q that touch coordinate i's block. Returns the
+    entries (i, j ≤ i) of S that can be nonzero, the first of them in each row of S
+    (its envelope, outside which a Cholesky factor has no fill-in), and per
+    coordinate its rows of Φ_q (ascending) and how many."""
+    blocks = [set(col_block[jac_cols[r, : jac_ncols[r]]].tolist()) for r in range(jac_ncols.size)]
+    pairs = [(i, j) for i in range(len(blocks)) for j in range(i + 1) if blocks[i] & blocks[j]]
+    first = [min(j for i, j in pairs if i == row) for row in range(len(blocks))]
+    rows = [[r for r, b in enumerate(blocks) if col_block[k] in b] for k in range(col_block.size)]
+    coord_rows = np.zeros((col_block.size, max(map(len, rows), default=0)), dtype=np.int64)
+    for k, r in enumerate(rows):
+        coord_rows[k, : len(r)] = r
+    return (
+        np.array(pairs, dtype=np.int64).reshape(-1, 2),
+        np.array(first, dtype=np.int64),
+        coord_rows,
+        np.array([len(r) for r in rows], dtype=np.int64),
+    )
+
+
 def make_work(system: System) -> Work:
     """Allocate the scratch arrays for `system`."""
     n, m, ny = system.n, system.m, state_size(system)
@@ -125,6 +154,7 @@ def make_work(system: System) -> Work:
     for b, (start, end) in enumerate(zip(system.blk_start, system.blk_end, strict=True)):
         col_block[start:end] = b
     beam_size = 4 * (int(system.beam_nel.max()) + 1) if system.beam_nel.size else 0
+    pairs, first, coord_rows, coord_nrows = constraint_sparsity(jac_cols, jac_ncols, col_block)
     return Work(
         phi=np.zeros(m),
         jac=np.zeros((m, n)),
@@ -159,6 +189,10 @@ def make_work(system: System) -> Work:
         fd_gen=np.zeros(n),
         fd_jout=np.zeros((n_clearance_joints(system), N_JOINT_OUT)),
         contact_coords=contact_coordinates(system),
+        schur_pairs=pairs,
+        schur_first=first,
+        coord_rows=coord_rows,
+        coord_nrows=coord_nrows,
     )
 
 
@@ -250,16 +284,20 @@ def factor_schur(sys, work) -> int:
             blk = work.col_block[k]
             for i in range(sys.blk_start[blk], sys.blk_end[blk]):
                 y_mt[i, r] += sys.mass_inv[i, k] * jac[r, k]
+    # Only the entries that can be nonzero (work.schur_pairs) are summed; the
+    # others are exact zeros, so S is the same to the bit.
     schur = work.schur
-    for i in range(m):
-        for j in range(i + 1):
-            acc = 0.0
-            for c in range(work.jac_ncols[i]):
-                k = cols[i, c]
-                acc += jac[i, k] * y_mt[k, j]
-            schur[i, j] = acc
-            schur[j, i] = acc
-    return OK if cholesky_in_place(schur, m) else SINGULAR
+    schur[:, :] = 0.0
+    for p in range(work.schur_pairs.shape[0]):
+        i = work.schur_pairs[p, 0]
+        j = work.schur_pairs[p, 1]
+        acc = 0.0
+        for c in range(work.jac_ncols[i]):
+            k = cols[i, c]
+            acc += jac[i, k] * y_mt[k, j]
+        schur[i, j] = acc
+        schur[j, i] = acc
+    return OK if cholesky_in_place(schur, m, work.schur_first) else SINGULAR
 
 
 @kernel
@@ -288,10 +326,12 @@ def project_velocities(sys, work, qd: np.ndarray) -> None:
 
 @kernel
 def _less_constraint_term(sys, work, base: np.ndarray, mult: np.ndarray, out: np.ndarray) -> None:
-    """out = base − M⁻¹ Φ_qᵀ mult, with M⁻¹ Φ_qᵀ from `factor_schur`; out may be base."""
+    """out = base − M⁻¹ Φ_qᵀ mult, with M⁻¹ Φ_qᵀ from `factor_schur`; out may be base.
+    Row i of M⁻¹ Φ_qᵀ is zero but for the rows of Φ_q in work.coord_rows."""
     for i in range(sys.n):
         acc = base[i]
-        for r in range(sys.m):
+        for c in range(work.coord_nrows[i]):
+            r = work.coord_rows[i, c]
             acc -= work.minv_jt[i, r] * mult[r]
         out[i] = acc
 

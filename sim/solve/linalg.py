@@ -13,14 +13,17 @@ from sim.jit import kernel
 
 
 @kernel
-def cholesky_in_place(a: np.ndarray, m: int) -> bool:
+def cholesky_in_place(a: np.ndarray, m: int, first: np.ndarray) -> bool:
     """Overwrite the leading m×m block of the symmetric matrix `a` with its
-    lower Cholesky factor L (a = L Lᵀ). Returns False if the block is not
-    positive definite to working precision (a singular or rank-deficient
-    constraint Jacobian shows up here)."""
+    lower Cholesky factor L (a = L Lᵀ). Row i of the block is zero left of
+    column first[i] (its envelope; zeros for a dense matrix), and so is row i of
+    L, which has no fill-in outside the envelope (George & Liu, Computer Solution
+    of Large Sparse Positive Definite Systems, 1981, ch. 4): the sums skip those
+    exact zeros. Returns False if the block is not positive definite to working
+    precision (a singular or rank-deficient constraint Jacobian shows up here)."""
     for j in range(m):
         s = a[j, j]
-        for k in range(j):
+        for k in range(first[j], j):
             s -= a[j, k] * a[j, k]
         # The relative threshold separates a truly singular Schur complement
         # (redundant or locked constraints) from an ill-scaled but valid one.
@@ -29,8 +32,10 @@ def cholesky_in_place(a: np.ndarray, m: int) -> bool:
         d = np.sqrt(s)
         a[j, j] = d
         for i in range(j + 1, m):
+            if first[i] > j:
+                continue
             s = a[i, j]
-            for k in range(j):
+            for k in range(max(first[i], first[j]), j):
                 s -= a[i, k] * a[j, k]
             a[i, j] = s / d
     return True
