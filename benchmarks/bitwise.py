@@ -8,9 +8,16 @@ each checkout in a subprocess of its own (its own PYTHONPATH and numba cache), s
 each returned under --out, and prints one line per case. Attributes that measure wall time
 are left out. Exit status 1 if any case differs.
 
+With --results it compares two workflow result trees instead (e.g. the quick workflow run by
+each checkout): every netCDF file of OLD_RESULTS against the file of the same path in
+NEW_RESULTS, or else of the same name (a file the new workflow files elsewhere); the `scene`
+attribute is compared after filling in the scene defaults (sim.scene.with_defaults), which
+newer run files record.
+
 Usage:
     python benchmarks/bitwise.py OLD_CHECKOUT NEW_CHECKOUT [--out DIR] [--case NAME ...]
     python benchmarks/bitwise.py ... --reuse   # keep results already stored under --out
+    python benchmarks/bitwise.py --results OLD_RESULTS NEW_RESULTS
 """
 
 import argparse
@@ -38,6 +45,8 @@ CASES = {
     "model-lyapunov": (RIGID, 0.5, "lyapunov"),
 }
 SKIPPED_ATTRS = {"solver_wall_time_s", "real_time_factor", "history"}
+# attributes of result files that name where and with what they were made
+SKIPPED_FILE_ATTRS = {"runs", "library_versions", "source"}
 
 
 def run_case(name: str) -> dict:
@@ -108,6 +117,49 @@ def differences(old: dict, new: dict) -> list[str]:
     return diffs
 
 
+def _scene_filled(dataset) -> None:
+    """Replace the dataset's `scene` attribute by the scene with its defaults filled in."""
+    import json
+
+    from sim.scene import with_defaults
+
+    if "scene" in dataset.attrs:
+        scene = with_defaults(json.loads(dataset.attrs["scene"]))
+        dataset.attrs["scene"] = json.dumps(scene, sort_keys=True)
+
+
+def compare_results(old_root: Path, new_root: Path) -> bool:
+    """Print IDENTICAL or DIFFERENT (what) for every netCDF file under old_root against its
+    counterpart under new_root; True if all are identical."""
+    import xarray as xr
+
+    new_files = {p.relative_to(new_root): p for p in new_root.rglob("*.nc")}
+    by_name = {}
+    for rel, path in new_files.items():
+        by_name.setdefault(rel.name, []).append(path)
+    same = True
+    for old in sorted(old_root.rglob("*.nc")):
+        rel = old.relative_to(old_root)
+        new = new_files.get(rel) or next(iter(by_name.get(rel.name, [])), None)
+        if new is None:
+            print(f"{rel}  MISSING in {new_root}")
+            same = False
+            continue
+        with xr.open_dataset(old) as a, xr.open_dataset(new) as b:
+            a, b = a.load(), b.load()
+        for dataset in (a, b):
+            _scene_filled(dataset)
+            for key in SKIPPED_FILE_ATTRS:
+                dataset.attrs.pop(key, None)
+        diffs = differences({"dataset": a}, {"dataset": b})
+        where = "" if new.relative_to(new_root) == rel else f" (as {new.relative_to(new_root)})"
+        print(f"{rel}{where}  {'IDENTICAL' if not diffs else 'DIFFERENT'}")
+        for d in diffs:
+            print(f"    {d}")
+        same &= not diffs
+    return same
+
+
 def stored(checkout: Path, name: str, out: Path, reuse: bool) -> dict:
     """The result of case `name` run by `checkout` (in a subprocess), stored under `out`."""
     path = out / f"{checkout.resolve().name}-{name}.pkl"
@@ -131,6 +183,9 @@ def main() -> None:
     parser.add_argument("--out", type=Path, default=Path("bitwise-results"))
     parser.add_argument("--case", action="append", choices=sorted(CASES))
     parser.add_argument("--reuse", action="store_true")
+    parser.add_argument(
+        "--results", action="store_true", help="OLD and NEW are workflow result trees"
+    )
     parser.add_argument("--run", choices=sorted(CASES), help=argparse.SUPPRESS)
     parser.add_argument("--to", type=Path, help=argparse.SUPPRESS)
     args = parser.parse_args()
@@ -140,6 +195,8 @@ def main() -> None:
         return
     if args.old is None or args.new is None:
         parser.error("give the OLD and NEW checkouts")
+    if args.results:
+        sys.exit(0 if compare_results(args.old, args.new) else 1)
     if args.old.resolve().name == args.new.resolve().name:
         parser.error(
             "the two checkouts need different directory names (results are stored by name)"
