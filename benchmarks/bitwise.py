@@ -10,7 +10,8 @@ are left out. Exit status 1 if any case differs.
 
 With --results it compares two workflow result trees instead (e.g. the quick workflow run by
 each checkout): every netCDF file of OLD_RESULTS against the file of the same path in
-NEW_RESULTS, or else of the same name (a file the new workflow files elsewhere); the `scene`
+NEW_RESULTS, or else (a sweep point's run, which <study>/run/ held before the sweeps ran in
+batches) of the same name under <study>/sweep/; the `scene`
 attribute is compared after filling in the scene defaults (sim.scene.with_defaults), which
 newer run files record.
 
@@ -105,7 +106,7 @@ def differences(old: dict, new: dict) -> list[str]:
                 if var in b.data_vars and not _same(a[var].values, b[var].values):
                     diffs.append(f"data variable {var}")
             for coord in a.coords:
-                if not _same(a[coord].values, b[coord].values):
+                if coord not in b.coords or not _same(a[coord].values, b[coord].values):
                     diffs.append(f"coordinate {coord}")
             keys = (set(a.attrs) | set(b.attrs)) - SKIPPED_ATTRS
             diffs += [f"attribute {k}" for k in sorted(keys) if a.attrs.get(k) != b.attrs.get(k)]
@@ -123,7 +124,7 @@ def _scene_filled(dataset) -> None:
 
     from sim.scene import with_defaults
 
-    if "scene" in dataset.attrs:
+    if str(dataset.attrs.get("scene", "")).startswith("{"):  # a resolved scene, not a name
         scene = with_defaults(json.loads(dataset.attrs["scene"]))
         dataset.attrs["scene"] = json.dumps(scene, sort_keys=True)
 
@@ -134,13 +135,15 @@ def compare_results(old_root: Path, new_root: Path) -> bool:
     import xarray as xr
 
     new_files = {p.relative_to(new_root): p for p in new_root.rglob("*.nc")}
-    by_name = {}
+    by_name = {}  # (study, name) of the runs of batched sweep points
     for rel, path in new_files.items():
-        by_name.setdefault(rel.name, []).append(path)
+        if len(rel.parts) > 2 and rel.parts[1] == "sweep":
+            by_name.setdefault((rel.parts[0], rel.name), []).append(path)
     same = True
     for old in sorted(old_root.rglob("*.nc")):
         rel = old.relative_to(old_root)
-        new = new_files.get(rel) or next(iter(by_name.get(rel.name, [])), None)
+        moved = by_name.get((rel.parts[0], rel.name), []) if rel.parts[1:2] == ("run",) else []
+        new = new_files.get(rel) or next(iter(moved), None)
         if new is None:
             print(f"{rel}  MISSING in {new_root}")
             same = False
