@@ -20,7 +20,7 @@ from sim.model.kinematics import (
     point_velocity,
 )
 from sim.model.system import POINT_MODAL
-from sim.scene import SceneError, load_scene
+from sim.scene import SceneError, load_scene, with_defaults
 
 RODS = ("rod2", "rod3", "rod4")
 MODAL = [f"bodies.{b}.kind=modal" for b in RODS]
@@ -52,7 +52,7 @@ def _pinned_link(modes: int):
         "P": {**revolute, "bodies": ["ground", "link"], "points": ["P", "start"]},
         "Q": {**revolute, "bodies": ["ground", "link"], "points": ["Q", "end"]},
     }
-    system, layout = build_system(scene)
+    system, layout = build_system(with_defaults(scene))
     q = np.zeros(system.n)
     q[layout.offset["crank"] : layout.offset["crank"] + 3] = (0.05, 0.0, 0.0)
     q[layout.offset["link"] : layout.offset["link"] + 2] = (0.2 + LENGTH / 2, 0.0)
