@@ -9,8 +9,6 @@ the initial position analysis solves and the studies use as the reference.
 
 import math
 
-import numpy as np
-
 from sim.model.builder import Layout, SystemBuilder
 from sim.model.contact import (
     corner_stiffness,
@@ -24,6 +22,7 @@ from sim.model.system import (
     CON_REVOLUTE,
     CON_WELD,
     SLIDER_LAWS,
+    ContactLaw,
     System,
 )
 from sim.scene import GROUND
@@ -98,16 +97,9 @@ def build_system(scene: dict, *, ideal: bool = False, rigid: bool = False) -> tu
     builder = SystemBuilder(
         scene["gravity"],
         (scene["solver"]["baumgarte_alpha"], scene["solver"]["baumgarte_beta"]),
-        np.array(
-            [
-                contact["restitution"],
-                contact["friction"],
-                contact["v0"],
-                contact["v1"],
-                contact["min_impact_speed"],
-                contact["exponent"],
-                SLIDER_LAWS[contact["slider_law"]],
-            ]
+        ContactLaw(
+            *(float(contact[f]) for f in ContactLaw._fields[:-1]),
+            slider_law=SLIDER_LAWS[contact["slider_law"]],
         ),
         scene["ground"],
     )

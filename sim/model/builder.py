@@ -13,12 +13,16 @@ import numpy as np
 
 from sim.model import ancf, beams, modal
 from sim.model.system import (
+    BEAM,
     CON_DRIVE,
     CON_ROWS,
     POINT_GROUND,
     POINT_MODAL,
     POINT_NODE,
     POINT_RIGID,
+    REVOLUTE_CLEARANCE,
+    TRANSLATIONAL_CLEARANCE,
+    ContactLaw,
     System,
 )
 from sim.scene import GROUND, SceneError
@@ -69,7 +73,7 @@ class SystemBuilder:
         self,
         gravity: tuple[float, float],
         baumgarte: tuple[float, float],
-        contact: np.ndarray,
+        contact: ContactLaw,
         ground: dict[str, tuple[float, float]],
     ) -> None:
         self._g = np.asarray(gravity, dtype=float)
@@ -287,13 +291,13 @@ class SystemBuilder:
             drive_row=drive_row,
             drive_coord=drive_coord,
             rj_pts=np.array([p for _, p, _ in self._rj], dtype=np.int64).reshape(-1, 2),
-            rj_f=np.array([f for _, _, f in self._rj], dtype=float).reshape(-1, 4),
+            rj=np.array([f for _, _, f in self._rj], dtype=REVOLUTE_CLEARANCE),
             tj_off=np.array([o for _, o, _ in self._tj], dtype=np.int64),
-            tj_f=np.array([f for _, _, f in self._tj], dtype=float).reshape(-1, 8),
+            tj=np.array([f for _, _, f in self._tj], dtype=TRANSLATIONAL_CLEARANCE),
             contact=self._contact,
             beam_off=np.array([o for o, _, _ in self._beams], dtype=np.int64),
             beam_nel=np.array([ne for _, ne, _ in self._beams], dtype=np.int64),
-            beam_f=np.array(beam_f, dtype=float).reshape(-1, 4),
+            beam=np.array(beam_f, dtype=BEAM),
             **_stacked_beam_constants(beam_f),
             md_off=np.array(md[0], dtype=np.int64),
             md_modes=np.array(md[1], dtype=np.int64),
