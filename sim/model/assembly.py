@@ -17,7 +17,6 @@ from sim.model.contact import (
     revolute_stiffness,
 )
 from sim.model.system import (
-    CON_CLAMP,
     CON_PRISMATIC,
     CON_REVOLUTE,
     CON_WELD,
@@ -190,20 +189,16 @@ def _add_weld(
     builder: SystemBuilder, scene: dict, name: str, joint: dict, p0: int, p1: int
 ) -> None:
     """A weld of rigid bodies (the scene accepts no other): to the ground it is a clamp
-    of the body's pose at its hint; between two bodies it keeps their relative angle
-    at the hints'."""
+    at the body's hint angle; between two bodies it keeps their relative angle at the
+    hints'."""
     pair = joint["bodies"]
     bodies = scene["bodies"]
-    o1 = builder.body(pair[1], f"joints.{name}").offset
     if pair[0] == GROUND:
-        body = bodies[pair[1]]
-        theta = math.radians(body["hint"]["angle_deg"])
-        gx, gy = scene["ground"][joint["points"][0]]
-        ux, uy = _local_points(body)[joint["points"][1]]
-        c, s = math.cos(theta), math.sin(theta)
-        pose = (gx - c * ux + s * uy, gy - s * ux - c * uy, theta)
-        builder.add_constraint(name, CON_CLAMP, (o1,), pose)
+        theta = math.radians(bodies[pair[1]]["hint"]["angle_deg"])
+        position = scene["ground"][joint["points"][0]]
+        builder.add_clamp(name, pair[1], joint["points"][1], position, theta)
         return
+    o1 = builder.body(pair[1], f"joints.{name}").offset
     o0 = builder.body(pair[0], f"joints.{name}").offset
     rel = math.radians(bodies[pair[1]]["hint"]["angle_deg"] - bodies[pair[0]]["hint"]["angle_deg"])
     builder.add_constraint(name, CON_WELD, (p0, p1, o0, o1), (rel,))

@@ -7,6 +7,7 @@ block, gravity force, reference point and angle) plus one branch of `add_point`
 into the arrays of `System` (sim/model/system.py) and the `Layout` that names them.
 """
 
+import math
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -14,6 +15,8 @@ import numpy as np
 from sim.model import ancf, beams, modal
 from sim.model.system import (
     BEAM,
+    CON_CLAMP,
+    CON_CLAMP_NODE,
     CON_DRIVE,
     CON_ROWS,
     POINT_GROUND,
@@ -219,6 +222,28 @@ class SystemBuilder:
         self._con.append((kind, self._m, ints, floats))
         self._rows.append((owner, self._m, CON_ROWS[kind]))
         self._m += CON_ROWS[kind]
+
+    def add_clamp(
+        self, owner: str, body: str, point: str, position: tuple[float, float], angle: float
+    ) -> None:
+        """Hold point `point` of `body` at the global `position` (m) with the body at
+        `angle` (rad): a rigid body's pose (CON_CLAMP), or a beam end node's position and
+        slope (CON_CLAMP_NODE). The scene's welds to the ground come here."""
+        where = f"joints.{owner}"
+        b = self.body(body, where)
+        gx, gy = position
+        if b.elements:
+            node = self.add_point(body, point, where)  # checks the point is an end
+            self.add_constraint(owner, CON_CLAMP_NODE, (self._pt[node][1],), (gx, gy, angle))
+            return
+        if b.modes:
+            raise SceneError(f"{where}: a modal link cannot be clamped (its frame is floating)")
+        if point not in b.points:
+            raise SceneError(f"{where}: body {body!r} has no point {point!r}")
+        ux, uy = b.points[point]
+        c, s = math.cos(angle), math.sin(angle)
+        pose = (gx - c * ux + s * uy, gy - s * ux - c * uy, angle)
+        self.add_constraint(owner, CON_CLAMP, (b.offset,), pose)
 
     def add_revolute_clearance(
         self, owner: str, p0: int, p1: int, bearing_radius: float, clearance: float, k: float
