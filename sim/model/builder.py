@@ -101,7 +101,9 @@ class SystemBuilder:
     # Bodies ------------------------------------------------------------------------
 
     def _new_body(self, name: str, size: int) -> int:
-        if name in self._bodies or name == GROUND:
+        if name == GROUND:
+            raise SceneError(f"bodies.{GROUND}: the name is reserved for the ground")
+        if name in self._bodies:
             raise SceneError(f"bodies.{name}: added twice")
         offset = self._n
         self._n += size
@@ -266,7 +268,7 @@ class SystemBuilder:
     ) -> None:
         """A translational clearance joint: rigid body `slider` (length × width) in a ground
         guide through guide[:2] at angle guide[2] of width `gap_width`; face stiffness
-        (N/m²) and corner stiffness (N/m^exponent) (sim.model.clearance)."""
+        (N/m) and corner Hertz stiffness (N/m^1.5) (sim.model.clearance)."""
         o = self.body(slider, f"joints.{owner}").offset
         self._tj.append((owner, o, (*guide, length, width, gap_width, k_face, k_corner)))
 

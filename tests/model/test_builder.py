@@ -39,6 +39,8 @@ def test_unknown_names_are_errors_that_name_the_scene_key():
         b.add_drive("rotor", 0.0, 1.0)
     with pytest.raises(SceneError, match=r"bodies\.crank: added twice"):
         b.add_rigid_body("crank", 1.0, 0.01, {})
+    with pytest.raises(SceneError, match=r"bodies\.ground: the name is reserved"):
+        b.add_rigid_body("ground", 1.0, 0.01, {})
 
 
 def test_rigid_clamp_holds_the_named_point_at_its_position():
