@@ -2,8 +2,9 @@
 data variable and attribute compared exactly (NaNs equal to NaNs, -0.0 unequal to 0.0).
 
 A refactoring of the integrator must not change a single step: this runs a set of cases
-(the rigid flagship with DOPRI5, the flexible flagship with generalized-α, runs that end in
-each failure a scene can provoke cheaply, a continued run and a short model exponent) with
+(the rigid flagship with DOPRI5, the flexible flagship with generalized-α, modal links, runs
+that end in each failure a scene can provoke cheaply, a continued run and a short model
+exponent) with
 each checkout in a subprocess of its own (its own PYTHONPATH and numba cache), stores what
 each returned under --out, and prints one line per case. Attributes that measure wall time
 are left out. Exit status 1 if any case differs.
@@ -33,11 +34,13 @@ import numpy as np
 RIGID = ["joints.A.clearance=5e-4", "joints.B.clearance=5e-4"]
 BEAMS = [f"bodies.{b}.kind=beam" for b in ("rod2", "rod3", "rod4")]
 FLEXIBLE = [*RIGID, *BEAMS, "solver.method=generalized_alpha", "solver.rtol=1e-5"]
+MODAL = [*RIGID, *(f"bodies.{b}.kind=modal" for b in ("rod2", "rod3", "rod4"))]
 
 # name → (overrides, revolutions, kind); kind "run" is simulate(rigid=...) on the six-bar.
 CASES = {
     "rigid-dopri5": (RIGID, 3.0, "rigid"),
     "flexible-galpha": (FLEXIBLE, 0.5, "run"),
+    "modal-dopri5": (MODAL, 0.5, "run"),
     "rigid-galpha": ([*RIGID, "solver.method=generalized_alpha"], 0.5, "rigid"),
     "max-steps-dopri5": ([*RIGID, "solver.max_steps=300"], 1.0, "rigid"),
     "max-steps-galpha": ([*FLEXIBLE, "solver.max_steps=50"], 0.5, "run"),

@@ -82,8 +82,10 @@ def print_elastic_laws() -> None:
     print("elastic laws at the initial state (ours against Exudyn's ANCFCable2D law):")
     for k, name in enumerate(b for b in start.layout.bodies if start.layout.is_beam[b]):
         o, ne = system.beam_off[k], system.beam_nel[k]
-        length, ea, ei, _ = system.beam_f[k]
-        diff = elastic_law_difference(q[o : o + 4 * (ne + 1)].copy(), length, ea, ei)
+        beam = system.beam[k]
+        diff = elastic_law_difference(
+            q[o : o + 4 * (ne + 1)].copy(), beam["element_length"], beam["ea"], beam["ei"]
+        )
         print(
             f"  {name}: max |ΔF| {diff['force']:.2g} of max |F|, strain energy {diff['energy']:.2g}"
         )

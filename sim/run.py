@@ -17,11 +17,8 @@ from sim.model.assembly import Layout, build_system, crank_period, omega
 from sim.model.continuation import State, continued_state
 from sim.model.initial import initial_state
 from sim.model.system import (
-    CT_SLIDER_LAW,
     OUT_NORMAL_FORCE,
-    RJ_JOURNAL_RADIUS,
     SLIDER_LAW_PAPER,
-    TJ_WIDTH,
     System,
     n_gaps,
 )
@@ -188,8 +185,8 @@ def prepare(
         max_steps=int(solver["max_steps"]),
         pen_bound=np.concatenate(
             [
-                PENETRATION_BOUND * system.rj_f[:, RJ_JOURNAL_RADIUS],
-                PENETRATION_BOUND * system.tj_f[:, TJ_WIDTH],
+                PENETRATION_BOUND * system.rj["journal_radius"],
+                PENETRATION_BOUND * system.tj["width"],
             ]
         ),
     )
@@ -295,7 +292,7 @@ def diagnose(integ: Integration, status: int) -> str:
         j = int(tally["culprit"])
         hint = ""
         is_slider = j >= integ.system.rj_pts.shape[0]
-        if is_slider and integ.system.contact[CT_SLIDER_LAW] == SLIDER_LAW_PAPER:
+        if is_slider and integ.system.contact.slider_law == SLIDER_LAW_PAPER:
             hint = (
                 "; the paper's slider law switches from a corner to the face law with a jump "
                 "in stored energy that feeds the slider's rattle: contact.slider_law=winkler "

@@ -44,23 +44,6 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from sim.model.system import (
-    CT_EXPONENT,
-    CT_FRICTION,
-    CT_MIN_IMPACT_SPEED,
-    CT_RESTITUTION,
-    CT_V0,
-    CT_V1,
-    RJ_BEARING_RADIUS,
-    RJ_CLEARANCE,
-    RJ_JOURNAL_RADIUS,
-    RJ_STIFFNESS,
-    TJ_ANGLE,
-    TJ_GAP_WIDTH,
-    TJ_K_FACE,
-    TJ_LENGTH,
-    TJ_PX,
-    TJ_PY,
-    TJ_WIDTH,
     System,
 )
 
@@ -127,12 +110,12 @@ class Law:
         """The scene's contact law constants as compiled into `system`."""
         c = system.contact
         return cls(
-            restitution=c[CT_RESTITUTION],
-            friction=c[CT_FRICTION],
-            v0=c[CT_V0],
-            v1=c[CT_V1],
-            min_impact_speed=c[CT_MIN_IMPACT_SPEED],
-            exponent=c[CT_EXPONENT],
+            restitution=c.restitution,
+            friction=c.friction,
+            v0=c.v0,
+            v1=c.v1,
+            min_impact_speed=c.min_impact_speed,
+            exponent=c.exponent,
         )
 
     def hysteresis(self, elastic: float, rate: float, onset: float) -> float:
@@ -201,14 +184,14 @@ class RevoluteClearance:
         cls, system: System, j: int, bearing: Point, journal: Point
     ) -> "RevoluteClearance":
         """Revolute clearance j of the compiled `system`, between the given points."""
-        f = system.rj_f[j]
+        f = system.rj[j]
         return cls(
             bearing=bearing,
             journal=journal,
-            r_bearing=f[RJ_BEARING_RADIUS],
-            r_journal=f[RJ_JOURNAL_RADIUS],
-            clearance=f[RJ_CLEARANCE],
-            stiffness=f[RJ_STIFFNESS],
+            r_bearing=f["bearing_radius"],
+            r_journal=f["journal_radius"],
+            clearance=f["clearance"],
+            stiffness=f["stiffness"],
             law=Law.from_system(system),
         )
 
@@ -278,15 +261,15 @@ class SliderClearance:
     @classmethod
     def from_system(cls, system: System, j: int, slider: Point) -> "SliderClearance":
         """Translational clearance j (counted among the translational ones) of `system`."""
-        f = system.tj_f[j]
+        f = system.tj[j]
         return cls(
             slider=slider,
-            origin=(f[TJ_PX], f[TJ_PY]),
-            angle=f[TJ_ANGLE],
-            length=f[TJ_LENGTH],
-            width=f[TJ_WIDTH],
-            gap_width=f[TJ_GAP_WIDTH],
-            face_stiffness=f[TJ_K_FACE],
+            origin=(f["px"], f["py"]),
+            angle=f["angle"],
+            length=f["length"],
+            width=f["width"],
+            gap_width=f["gap_width"],
+            face_stiffness=f["k_face"],
             law=Law.from_system(system),
         )
 

@@ -37,7 +37,6 @@ from sim.crosscheck.recorder import Recorder
 from sim.model.assembly import Layout, body_mass_properties, omega
 from sim.model.beams import midpoint_shape
 from sim.model.system import (
-    CT_SLIDER_LAW,
     POINT_GROUND,
     POINT_RIGID,
     SLIDER_LAW_WINKLER,
@@ -143,7 +142,8 @@ class _Builder:
         o = self.layout.offset[name]
         ne = self.layout.elements[name]
         k = int(np.flatnonzero(self.system.beam_off == o)[0])
-        el_len, ea, ei, beta = self.system.beam_f[k]
+        beam = self.system.beam[k]
+        el_len, ea, ei, beta = (beam[f] for f in ("element_length", "ea", "ei", "damping"))
         density = self.scene["materials"][body["material"]]["density"]
         mass_per_length = density * body["section"][0] * body["section"][1]
         nodes = [
@@ -303,7 +303,7 @@ class _Builder:
         return self._generic(law, nodes, reference)
 
     def _slider_clearance(self, joint, j) -> Contact:
-        if self.system.contact[CT_SLIDER_LAW] != SLIDER_LAW_WINKLER:
+        if self.system.contact.slider_law != SLIDER_LAW_WINKLER:
             raise CrossCheckError(
                 "contact.slider_law: the Exudyn cross-check implements 'winkler' only"
             )

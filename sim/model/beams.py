@@ -12,7 +12,6 @@ import numpy as np
 
 from sim.jit import kernel
 from sim.model import ancf, modal
-from sim.model.system import BM_DAMPING
 
 
 def hermite_shape(xi: float, length: float) -> np.ndarray:
@@ -65,7 +64,7 @@ def beam_forces(sys, q: np.ndarray, qd: np.ndarray, gen: np.ndarray, scratch: np
         for i in range(size):
             gen[o + i] -= out[i]
         strain += ancf.beam_strain_energy(qb, dshape, axial_w, d2shape, bending_w)
-        if sys.beam_f[b, BM_DAMPING] > 0.0:
+        if sys.beam[b].damping > 0.0:
             p_diss += _damping_forces(sys, b, q, qd, out)
             for i in range(size):
                 gen[o + i] -= out[i]
@@ -86,7 +85,7 @@ def _damping_forces(sys, b: int, q: np.ndarray, qd: np.ndarray, out: np.ndarray)
         sys.beam_axial_w[b],
         sys.beam_d2shape[b],
         sys.beam_bending_w[b],
-        sys.beam_f[b, BM_DAMPING],
+        sys.beam[b].damping,
         out,
     )
     power = 0.0
@@ -101,6 +100,6 @@ def beam_damping_power(sys, q: np.ndarray, qd: np.ndarray, scratch: np.ndarray) 
     W; the elastic forces, which dissipate nothing, are not evaluated."""
     power = modal.modal_damping_power(sys, qd)
     for b in range(sys.beam_off.shape[0]):
-        if sys.beam_f[b, BM_DAMPING] > 0.0:
+        if sys.beam[b].damping > 0.0:
             power += _damping_forces(sys, b, q, qd, scratch)
     return power

@@ -33,32 +33,13 @@ from sim.model.contact import friction_force, lankarani_nikravesh
 from sim.model.kinematics import apply_point_force, point_position, point_velocity
 from sim.model.system import (
     CORNERS_PER_SLIDER,
-    CT_EXPONENT,
-    CT_FRICTION,
-    CT_MIN_IMPACT_SPEED,
-    CT_RESTITUTION,
-    CT_SLIDER_LAW,
-    CT_V0,
-    CT_V1,
     GAPS_PER_SLIDER,
     OUT_FRICTION_FORCE,
     OUT_NORMAL_FORCE,
     OUT_PENETRATION,
     OUT_RATE,
     OUT_STATE,
-    RJ_BEARING_RADIUS,
-    RJ_CLEARANCE,
-    RJ_JOURNAL_RADIUS,
-    RJ_STIFFNESS,
     SLIDER_LAW_WINKLER,
-    TJ_ANGLE,
-    TJ_GAP_WIDTH,
-    TJ_K_CORNER,
-    TJ_K_FACE,
-    TJ_LENGTH,
-    TJ_PX,
-    TJ_PY,
-    TJ_WIDTH,
 )
 
 # Corner signs in the slider frame (x along the slider's length, y across), in
@@ -86,8 +67,8 @@ def eccentricity_rate(sys, j: int, q: np.ndarray, qd: np.ndarray) -> tuple[float
 @kernel
 def guide_frame(sys, j: int) -> tuple[float, float, float, float]:
     """Tangent and normal (t_x, t_y, n_x, n_y) of the guide of translational clearance j."""
-    c = np.cos(sys.tj_f[j, TJ_ANGLE])
-    s = np.sin(sys.tj_f[j, TJ_ANGLE])
+    c = np.cos(sys.tj[j].angle)
+    s = np.sin(sys.tj[j].angle)
     return c, s, -s, c
 
 
@@ -115,15 +96,15 @@ def corner_gap(
     """Penetration δ (m), its rate (m/s) and the corner's offset (a_x, a_y) from the
     slider centre, for corner i of slider j against wall `side`, from its pose."""
     o = sys.tj_off[j]
-    ux = 0.5 * CORNER_SX[i] * sys.tj_f[j, TJ_LENGTH]
-    uy = 0.5 * CORNER_SY[i] * sys.tj_f[j, TJ_WIDTH]
+    ux = 0.5 * CORNER_SX[i] * sys.tj[j].length
+    uy = 0.5 * CORNER_SY[i] * sys.tj[j].width
     ax = c * ux - s * uy
     ay = s * ux + c * uy
     w = qd[o + 2]
     vx = qd[o] - w * ay
     vy = qd[o + 1] + w * ax
-    lateral = (q[o] + ax - sys.tj_f[j, TJ_PX]) * nx + (q[o + 1] + ay - sys.tj_f[j, TJ_PY]) * ny
-    delta = side * lateral - 0.5 * sys.tj_f[j, TJ_GAP_WIDTH]
+    lateral = (q[o] + ax - sys.tj[j].px) * nx + (q[o + 1] + ay - sys.tj[j].py) * ny
+    delta = side * lateral - 0.5 * sys.tj[j].gap_width
     return delta, side * (vx * nx + vy * ny), ax, ay
 
 
@@ -136,7 +117,7 @@ def gap(sys, g: int, q: np.ndarray, qd: np.ndarray) -> tuple[float, float]:
         vx, vy = eccentricity_rate(sys, g, q, qd)
         e = np.hypot(ex, ey)
         rate = (ex * vx + ey * vy) / e if e > 0.0 else 0.0
-        return e - sys.rj_f[g, RJ_CLEARANCE], rate
+        return e - sys.rj[g].clearance, rate
     k = g - nr
     j = k // GAPS_PER_SLIDER
     c, s, nx, ny = slider_pose(sys, j, q)
@@ -162,14 +143,14 @@ def _flagged_edge(mem: np.ndarray, base: int, w: int) -> int:
 @kernel
 def face_energy(sys, j: int, da: float, db: float) -> float:
     """Elastic energy (J) of slider j's face pressed in to end depths da, db (m)."""
-    return sys.tj_f[j, TJ_K_FACE] * (da * da + da * db + db * db) / 6.0
+    return sys.tj[j].k_face * (da * da + da * db + db * db) / 6.0
 
 
 @kernel
 def corner_energy(sys, j: int, delta: float) -> float:
     """Elastic energy (J) of one corner of slider j pressed in to depth δ (m)."""
-    p = sys.contact[CT_EXPONENT]
-    return sys.tj_f[j, TJ_K_CORNER] * delta ** (p + 1.0) / (p + 1.0)
+    p = sys.contact.exponent
+    return sys.tj[j].k_corner * delta ** (p + 1.0) / (p + 1.0)
 
 
 @kernel
@@ -180,7 +161,7 @@ def face_switch_energy(sys, mem: np.ndarray, g: int, q: np.ndarray, qd: np.ndarr
     energy K_face δa²/6 differs from the corner's K δa^(n+1)/(n+1). The jump is
     released as motion; the energy audit books it (negative: created)."""
     nr = sys.rj_pts.shape[0]
-    if g < nr or sys.contact[CT_SLIDER_LAW] == SLIDER_LAW_WINKLER:
+    if g < nr or sys.contact.slider_law == SLIDER_LAW_WINKLER:
         return 0.0
     k = g - nr
     j = k // GAPS_PER_SLIDER
@@ -221,7 +202,7 @@ def revolute_clearance_forces(
         pj = sys.rj_pts[j, 1]
         ex, ey = eccentricity(sys, j, q)
         e = np.hypot(ex, ey)
-        delta = e - sys.rj_f[j, RJ_CLEARANCE]
+        delta = e - sys.rj[j].clearance
         vx, vy = eccentricity_rate(sys, j, q, qd)
         rate = (ex * vx + ey * vy) / e if e > 0.0 else 0.0
         jout[j, OUT_PENETRATION] = max(delta, 0.0)
@@ -231,30 +212,30 @@ def revolute_clearance_forces(
         jout[j, OUT_STATE] = 0.0
         if delta <= 0.0:
             continue
-        k = sys.rj_f[j, RJ_STIFFNESS]
+        k = sys.rj[j].stiffness
         fn, fel = lankarani_nikravesh(
             k,
             delta,
             rate,
             _onset_rate(mem, j, rate),
-            ce[CT_RESTITUTION],
-            ce[CT_EXPONENT],
-            ce[CT_MIN_IMPACT_SPEED],
+            ce.restitution,
+            ce.exponent,
+            ce.min_impact_speed,
         )
         nx = ex / e
         ny = ey / e
-        rj = sys.rj_f[j, RJ_JOURNAL_RADIUS]
-        rb = sys.rj_f[j, RJ_BEARING_RADIUS]
+        rj = sys.rj[j].journal_radius
+        rb = sys.rj[j].bearing_radius
         vjx, vjy = point_velocity(sys, pj, q, qd, rj * nx, rj * ny)
         vbx, vby = point_velocity(sys, pb, q, qd, rb * nx, rb * ny)
         slip = -ny * (vjx - vbx) + nx * (vjy - vby)
-        ft = friction_force(fn, slip, ce[CT_FRICTION], ce[CT_V0], ce[CT_V1])
+        ft = friction_force(fn, slip, ce.friction, ce.v0, ce.v1)
         fx = -fn * nx - ft * ny
         fy = -fn * ny + ft * nx
         apply_point_force(sys, pj, q, fx, fy, rj * nx, rj * ny, gen)
         apply_point_force(sys, pb, q, -fx, -fy, rb * nx, rb * ny, gen)
         p_diss += (fn - fel) * rate - ft * slip
-        u_contact += fel * delta / (ce[CT_EXPONENT] + 1.0)
+        u_contact += fel * delta / (ce.exponent + 1.0)
         jout[j, OUT_NORMAL_FORCE] = fn
         jout[j, OUT_FRICTION_FORCE] = ft
         jout[j, OUT_STATE] = 1.0
@@ -280,7 +261,7 @@ def _slider_force(
     vx, vy = slider_point_velocity(sys, j, qd, ax, ay)
     slip = vx * tx + vy * ty
     ce = sys.contact
-    ft = friction_force(fn, slip, ce[CT_FRICTION], ce[CT_V0], ce[CT_V1])
+    ft = friction_force(fn, slip, ce.friction, ce.v0, ce.v1)
     fx = -side * fn * nx + ft * tx
     fy = -side * fn * ny + ft * ty
     o = sys.tj_off[j]
@@ -319,7 +300,7 @@ def _winkler_edge(sys, j, w, q, qd, mem, gen):
     db, rb, abx, aby = corner_gap(sys, j, b, side, q, qd, c, s, nx, ny)
     if da <= 0.0 and db <= 0.0:
         return 0.0, 0.0, 0.0, 0.0, 0.0
-    k_face = sys.tj_f[j, TJ_K_FACE]
+    k_face = sys.tj[j].k_face
     if da > 0.0 and db > 0.0:
         frac = (da + 2.0 * db) / (3.0 * (da + db))
         f_el = 0.5 * k_face * (da + db)
@@ -342,8 +323,8 @@ def _winkler_edge(sys, j, w, q, qd, mem, gen):
     else:
         onset = _onset_rate(mem, ga if da > 0.0 else gb, rate)
     ce = sys.contact
-    v_ref = max(onset, ce[CT_MIN_IMPACT_SPEED])
-    fn = max(0.0, f_el * (1.0 + 0.75 * (1.0 - ce[CT_RESTITUTION] ** 2) * rate / v_ref))
+    v_ref = max(onset, ce.min_impact_speed)
+    fn = max(0.0, f_el * (1.0 + 0.75 * (1.0 - ce.restitution**2) * rate / v_ref))
     cx = aax + frac * (abx - aax)
     cy = aay + frac * (aby - aay)
     ft, pf = _slider_force(sys, j, q, qd, side, fn, cx, cy, gen)
@@ -375,7 +356,7 @@ def translational_clearance_forces(
         c, s, nx, ny = slider_pose(sys, j, q)
         for w in range(2):
             side = 1.0 if w == 0 else -1.0
-            if ce[CT_SLIDER_LAW] == SLIDER_LAW_WINKLER:
+            if ce.slider_law == SLIDER_LAW_WINKLER:
                 fn, ft, pd, ue, depth = _winkler_edge(sys, j, w, q, qd, mem, gen)
                 if fn > 0.0 or depth > 0.0:
                     state = max(state, 2.0 if depth > 0.0 and fn > 0.0 else 1.0)
@@ -400,7 +381,7 @@ def translational_clearance_forces(
                 frac = (da + 2.0 * db) / (3.0 * (da + db))
                 cx = aax + frac * (abx - aax)
                 cy = aay + frac * (aby - aay)
-                fn = sys.tj_f[j, TJ_K_FACE] * 0.5 * (da + db)
+                fn = sys.tj[j].k_face * 0.5 * (da + db)
                 ft, pf = _slider_force(sys, j, q, qd, side, fn, cx, cy, gen)
                 p_diss += pf
                 u_contact += face_energy(sys, j, da, db)
@@ -414,13 +395,13 @@ def translational_clearance_forces(
                     continue
                 deepest = max(deepest, delta)
                 fn, fel = lankarani_nikravesh(
-                    sys.tj_f[j, TJ_K_CORNER],
+                    sys.tj[j].k_corner,
                     delta,
                     rate,
                     _onset_rate(mem, g, rate),
-                    ce[CT_RESTITUTION],
-                    ce[CT_EXPONENT],
-                    ce[CT_MIN_IMPACT_SPEED],
+                    ce.restitution,
+                    ce.exponent,
+                    ce.min_impact_speed,
                 )
                 ft, pf = _slider_force(sys, j, q, qd, side, fn, ax, ay, gen)
                 p_diss += pf + (fn - fel) * rate

@@ -34,12 +34,6 @@ from sim.model.clearance import eccentricity, gap, guide_frame
 from sim.model.initial import constraint_values, minimum_norm_newton
 from sim.model.system import (
     GAPS_PER_SLIDER,
-    RJ_CLEARANCE,
-    TJ_ANGLE,
-    TJ_GAP_WIDTH,
-    TJ_PX,
-    TJ_PY,
-    TJ_WIDTH,
     System,
     n_gaps,
 )
@@ -76,9 +70,9 @@ def clearance_coordinates(system: System, q: np.ndarray) -> np.ndarray:
     for j in range(system.tj_off.shape[0]):
         o = system.tj_off[j]
         _, _, nx, ny = guide_frame(system, j)
-        f = system.tj_f[j]
-        lateral = (q[o] - f[TJ_PX]) * nx + (q[o + 1] - f[TJ_PY]) * ny
-        c += [lateral, math.remainder(q[o + 2] - f[TJ_ANGLE], 2.0 * math.pi)]
+        f = system.tj[j]
+        lateral = (q[o] - f["px"]) * nx + (q[o + 1] - f["py"]) * ny
+        c += [lateral, math.remainder(q[o + 2] - f["angle"], 2.0 * math.pi)]
     return np.array(c)
 
 
@@ -97,8 +91,8 @@ def clearance_jacobian(system: System, q: np.ndarray) -> np.ndarray:
 def clearance_sizes(system: System) -> np.ndarray:
     """The free play of each clearance joint (m): the radial clearance of a revolute, half the
     guide width less the slider width of a translational joint."""
-    slider = 0.5 * (system.tj_f[:, TJ_GAP_WIDTH] - system.tj_f[:, TJ_WIDTH])
-    return np.concatenate([system.rj_f[:, RJ_CLEARANCE], slider])
+    slider = 0.5 * (system.tj["gap_width"] - system.tj["width"])
+    return np.concatenate([system.rj["clearance"], slider])
 
 
 def _check_same_model(previous: State, system: System, layout: Layout) -> None:

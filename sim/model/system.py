@@ -45,20 +45,57 @@ CON_ROWS = (2, 2, 1, 3, 4, 3)
 OUT_PENETRATION, OUT_NORMAL_FORCE, OUT_FRICTION_FORCE, OUT_STATE, OUT_RATE = range(5)
 N_JOINT_OUT = 5
 
-# Contact law parameters, indices into System.contact.
-CT_RESTITUTION, CT_FRICTION, CT_V0, CT_V1, CT_MIN_IMPACT_SPEED, CT_EXPONENT, CT_SLIDER_LAW = range(
-    7
-)
-# Slider–guide contact laws (contact.slider_law).
+# Slider–guide contact laws (ContactLaw.slider_law).
 SLIDER_LAW_PAPER, SLIDER_LAW_WINKLER = 0, 1
 SLIDER_LAWS = {"paper": SLIDER_LAW_PAPER, "winkler": SLIDER_LAW_WINKLER}
 
-# Translational clearance joint float parameters, indices into System.tj_f.
-TJ_PX, TJ_PY, TJ_ANGLE, TJ_LENGTH, TJ_WIDTH, TJ_GAP_WIDTH, TJ_K_FACE, TJ_K_CORNER = range(8)
-# Revolute clearance joint float parameters, indices into System.rj_f.
-RJ_BEARING_RADIUS, RJ_JOURNAL_RADIUS, RJ_CLEARANCE, RJ_STIFFNESS = range(4)
-# Beam float parameters, indices into System.beam_f.
-BM_ELEMENT_LENGTH, BM_EA, BM_EI, BM_DAMPING = range(4)
+
+class ContactLaw(NamedTuple):
+    """The contact law shared by every clearance joint (docs/model.md, sim.model.contact)."""
+
+    restitution: float  # coefficient of restitution c_e of the Lankarani–Nikravesh law
+    friction: float  # Coulomb coefficient μ
+    v0: float  # m/s, modified Coulomb law: no friction below this slip speed
+    v1: float  # m/s, full friction above it (linear in between)
+    min_impact_speed: float  # m/s, v_min: floor of the impact speed in the damping term
+    exponent: float  # Hertz exponent n of the revolute and corner forces
+    slider_law: int  # SLIDER_LAW_PAPER or SLIDER_LAW_WINKLER
+
+
+# Per-joint and per-beam float parameters: numba structured arrays, read in kernels as
+# `sys.tj[j].gap_width` (the same loads as a column of a 2-D array, without its stride
+# multiplication) and in Python as `system.tj["gap_width"]`.
+REVOLUTE_CLEARANCE = np.dtype(
+    [
+        ("bearing_radius", np.float64),  # m
+        ("journal_radius", np.float64),  # m
+        ("clearance", np.float64),  # radial clearance, m
+        ("stiffness", np.float64),  # Hertz stiffness, N/m^1.5
+    ],
+    align=True,
+)
+TRANSLATIONAL_CLEARANCE = np.dtype(
+    [
+        ("px", np.float64),  # a point of the guide's centre line, m
+        ("py", np.float64),
+        ("angle", np.float64),  # direction of the guide, rad
+        ("length", np.float64),  # slider length along the guide, m
+        ("width", np.float64),  # slider width across it, m
+        ("gap_width", np.float64),  # guide width, slider width plus twice the clearance, m
+        ("k_face", np.float64),  # face stiffness, N/m (force per mean penetration)
+        ("k_corner", np.float64),  # corner Hertz stiffness, N/m^1.5
+    ],
+    align=True,
+)
+BEAM = np.dtype(
+    [
+        ("element_length", np.float64),  # m
+        ("ea", np.float64),  # axial stiffness EA, N
+        ("ei", np.float64),  # bending stiffness EI, N m²
+        ("damping", np.float64),  # stiffness-proportional damping coefficient β, s
+    ],
+    align=True,
+)
 
 CORNERS_PER_SLIDER = 4
 GAPS_PER_SLIDER = 8  # four corners, each against both walls
@@ -87,13 +124,13 @@ class System(NamedTuple):
     drive_row: int  # row of the drive constraint, -1 if none
     drive_coord: int  # coordinate the drive prescribes, -1 if none
     rj_pts: np.ndarray  # (nr, 2) bearing and journal point of each revolute clearance
-    rj_f: np.ndarray  # (nr, 4) radii, clearance (m), Hertz stiffness (N/m^1.5)
+    rj: np.ndarray  # (nr,) REVOLUTE_CLEARANCE parameters
     tj_off: np.ndarray  # (nt,) slider body offset of each translational clearance
-    tj_f: np.ndarray  # (nt, 8) guide and slider geometry, face and corner stiffness
-    contact: np.ndarray  # (7,) contact law parameters
+    tj: np.ndarray  # (nt,) TRANSLATIONAL_CLEARANCE parameters
+    contact: ContactLaw
     beam_off: np.ndarray  # (nbm,) first coordinate of each beam
     beam_nel: np.ndarray  # (nbm,) elements per beam
-    beam_f: np.ndarray  # (nbm, 4) element length, EA, EI, damping coefficient
+    beam: np.ndarray  # (nbm,) BEAM parameters
     beam_dshape: np.ndarray  # (nbm, ga, 4) ANCF constants, see sim.model.ancf.beam_constants
     beam_axial_w: np.ndarray  # (nbm, ga)
     beam_d2shape: np.ndarray  # (nbm, gb, 4)

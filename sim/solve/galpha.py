@@ -45,7 +45,6 @@ import numpy as np
 from sim.jit import kernel
 from sim.model.clearance import gap
 from sim.model.constraints import constraint_terms
-from sim.model.system import BM_EA
 from sim.solve.dae import (
     block_times,
     dissipated_power,
@@ -191,7 +190,7 @@ def _residual(sys, work, mem, t, q, v, xdd, lam, bh2, rtol, atol) -> float:
     # to about 1e-16 (with a margin of 100), whatever the tolerance asks.
     floor = 0.0
     for b in range(sys.beam_off.shape[0]):
-        floor = max(floor, 1e-14 * sys.beam_f[b, BM_EA])
+        floor = max(floor, 1e-14 * sys.beam[b].ea)
     total = 0.0
     for i in range(n):
         total += (x[i] / (bh2 * (rtol * (work.scratch[i] + 1e-3 * largest) + floor) + 1e-300)) ** 2

@@ -12,13 +12,10 @@ from sim.model import ancf
 from sim.model.clearance import eccentricity, eccentricity_rate, guide_frame
 from sim.model.modal import modal_midspan_deflection
 from sim.model.system import (
-    BM_ELEMENT_LENGTH,
     OUT_FRICTION_FORCE,
     OUT_NORMAL_FORCE,
     OUT_PENETRATION,
     OUT_STATE,
-    TJ_PX,
-    TJ_PY,
 )
 from sim.quantities import PEAK, SAMPLE, recorded, shape
 from sim.solve.dae import (
@@ -90,7 +87,7 @@ def beam_midspan_deflection(q: np.ndarray, sys, b: int) -> float:
         k += 1
     size = 4 * (sys.beam_nel[k] + 1)
     return ancf.beam_midspan_deflection(
-        q[i0 : i0 + size], sys.beam_nel[k], sys.beam_f[k, BM_ELEMENT_LENGTH]
+        q[i0 : i0 + size], sys.beam_nel[k], sys.beam[k].element_length
     )
 
 
@@ -156,8 +153,8 @@ def write_row(sys, work, y: np.ndarray, row: np.ndarray) -> None:
             k = j - nr
             o = sys.tj_off[k]
             tx, ty, nx, ny = guide_frame(sys, k)
-            dx = q[o] - sys.tj_f[k, TJ_PX]
-            dy = q[o + 1] - sys.tj_f[k, TJ_PY]
+            dx = q[o] - sys.tj[k].px
+            dy = q[o + 1] - sys.tj[k].py
             ex = dx * nx + dy * ny
             ey = dx * tx + dy * ty
             vx = qd[o] * nx + qd[o + 1] * ny

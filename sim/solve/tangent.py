@@ -22,7 +22,6 @@ import numpy as np
 
 from sim.jit import kernel
 from sim.model import ancf, modal
-from sim.model.system import BM_DAMPING
 from sim.solve.dae import contact_forces
 
 FD_STEP_Q = 1e-10
@@ -69,7 +68,7 @@ def _add_beam_tangent(sys, work, mat, q, qd, c_c: float, c_k: float) -> None:
         for i in range(size):
             for k in range(size):
                 mat[o + i, o + k] += c_k * kq[i, k]
-        beta = sys.beam_f[b, BM_DAMPING]
+        beta = sys.beam[b].damping
         if beta > 0.0:
             kv = work.beam_kv[:size, :size]
             ancf.beam_damping_jacobians(

@@ -11,7 +11,7 @@ from sim.crosscheck import contact
 from sim.model.assembly import build_system
 from sim.model.clearance import revolute_clearance_forces, translational_clearance_forces
 from sim.model.initial import rigid_initial_state
-from sim.model.system import N_JOINT_OUT, RJ_CLEARANCE, TJ_GAP_WIDTH, TJ_LENGTH, TJ_WIDTH, n_gaps
+from sim.model.system import N_JOINT_OUT, n_gaps
 from sim.scene import load_scene
 
 
@@ -55,8 +55,8 @@ def test_both_implementations_give_the_same_forces(sixbar):
     system, layout, q0, qd0 = sixbar
     rng = np.random.default_rng(8)
     o_crank, o_slider = layout.offset["crank"], layout.offset["slider"]
-    clearance_a = system.rj_f[0, RJ_CLEARANCE]
-    gap_b = 0.5 * (system.tj_f[0, TJ_GAP_WIDTH] - system.tj_f[0, TJ_WIDTH])
+    clearance_a = system.rj[0]["clearance"]
+    gap_b = 0.5 * (system.tj[0]["gap_width"] - system.tj[0]["width"])
     checked = 0
     for _ in range(200):
         q, qd = q0.copy(), qd0 + rng.normal(0.0, 0.05, q0.size)
@@ -64,7 +64,7 @@ def test_both_implementations_give_the_same_forces(sixbar):
         depth = clearance_a + rng.uniform(-2e-6, 2e-5)
         q[o_crank : o_crank + 2] += depth * np.array([math.cos(angle), math.sin(angle)])
         q[o_slider] += rng.uniform(-1.2, 1.2) * gap_b
-        q[o_slider + 2] += rng.uniform(-1.5, 1.5) * 2 * gap_b / system.tj_f[0, TJ_LENGTH]
+        q[o_slider + 2] += rng.uniform(-1.5, 1.5) * 2 * gap_b / system.tj[0]["length"]
         mem = np.zeros((n_gaps(system), 3))
         mem[:, 0] = rng.integers(0, 2, mem.shape[0])
         mem[:, 1] = rng.uniform(0.0, 0.5, mem.shape[0])
