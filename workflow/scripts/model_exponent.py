@@ -7,6 +7,7 @@ the perturbed scene), so the exponent starts exactly where the member's run star
 
 from sim.results import open_run, scene_of, write_netcdf
 from sim.studies.model_lyapunov import (
+    DEFAULT_INTERVAL_REVOLUTIONS,
     DEFAULT_TOLERANCES,
     linkage_lyapunov,
     model_lyapunov_dataset,
@@ -26,6 +27,7 @@ def main(sm) -> None:
         scene,
         revolutions=settings["revolutions"],
         transient_revolutions=settings["transient"],
+        interval_revolutions=settings.get("interval_revolutions", DEFAULT_INTERVAL_REVOLUTIONS),
         tolerances=tolerances,
         ideal=bool(run.attrs.get("model_ideal", 0)),
         rigid=bool(run.attrs.get("model_rigid", 0)),
