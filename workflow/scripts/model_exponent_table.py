@@ -31,6 +31,7 @@ def case_row(case: str, paths: list[str], level: float) -> dict:
         "revolutions": attrs["model_lyapunov_revolutions"],
         "transient_revolutions": attrs["model_lyapunov_transient_revolutions"],
         "rtol": attrs["model_lyapunov_rtol"],
+        "renormalisation_interval_s": attrs["model_lyapunov_interval_s"],
     }
 
 
