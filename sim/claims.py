@@ -209,7 +209,8 @@ def _members_text(row: pd.Series) -> str:
     """A case's model exponent over its members (a row of the model_exponent table)."""
     n = int(row.members)
     stderr = f"mean member standard error {row.mean_member_stderr_per_s:.2g} 1/s"
-    span = f"{row.revolutions:g} revolutions, {row.transient_revolutions:g} transient"
+    links = "rigid links" if row.links == "rigid" else "the run's links"
+    span = f"{links}, {row.revolutions:g} revolutions, {row.transient_revolutions:g} transient"
     if n == 1:
         return (
             f"{row.median_exponent_per_s:.3g} ± {row.mean_member_stderr_per_s:.2g} 1/s "

@@ -188,6 +188,7 @@ def test_flagship_chaos_leads_with_the_model_exponent_over_members(tmp_path):
         "mean_member_stderr_per_s": 6.2,
         "revolutions": 60,
         "transient_revolutions": 20,
+        "links": "rigid",
         "rtol": 1e-8,
     }
     pd.DataFrame([row]).to_csv(tmp_path / "members.csv", index=False)
@@ -200,8 +201,8 @@ def test_flagship_chaos_leads_with_the_model_exponent_over_members(tmp_path):
     lead = (
         "model-based largest exponent of the linkage (Benettin on the model's own integrator): "
         "median over 4 members 118 1/s, interval [104, 131] 1/s (87.5% distribution-free "
-        "coverage of the median), mean member standard error 6.2 1/s (60 revolutions, "
-        "20 transient)."
+        "coverage of the median), mean member standard error 6.2 1/s (rigid links, "
+        "60 revolutions, 20 transient)."
     )
     assert evidence.startswith(lead)
     assert evidence.index("A.x: λ = 80 1/s") > len(lead)

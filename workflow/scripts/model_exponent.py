@@ -23,6 +23,9 @@ def main(sm) -> None:
     run = open_run(sm.input.run)
     tolerances = tuple(settings.get("tolerances", DEFAULT_TOLERANCES))
     scene = with_tolerances(scene_of(run), tolerances)
+    rigid = settings.get("links", "run") == "rigid" or bool(run.attrs.get("model_rigid", 0))
+    if rigid:
+        scene["solver"]["method"] = "dopri5"  # rigid links belong to the explicit method
     result = linkage_lyapunov(
         scene,
         revolutions=settings["revolutions"],
@@ -30,7 +33,7 @@ def main(sm) -> None:
         interval_revolutions=settings.get("interval_revolutions", DEFAULT_INTERVAL_REVOLUTIONS),
         tolerances=tolerances,
         ideal=bool(run.attrs.get("model_ideal", 0)),
-        rigid=bool(run.attrs.get("model_rigid", 0)),
+        rigid=rigid,
     )
     out = model_lyapunov_dataset(result, (scene["solver"]["rtol"], scene["solver"]["atol"]))
     out.attrs.update({key: run.attrs[key] for key in MEMBER_ATTRS})
@@ -41,6 +44,7 @@ def main(sm) -> None:
             "source_run": str(sm.input.run),
             "model_lyapunov_revolutions": settings["revolutions"],
             "model_lyapunov_transient_revolutions": settings["transient"],
+            "model_lyapunov_links": settings.get("links", "run"),
         }
     )
     write_netcdf(out, sm.output[0])

@@ -30,6 +30,7 @@ def case_row(case: str, paths: list[str], level: float) -> dict:
         "mean_member_stderr_per_s": sum(stderrs) / len(stderrs),
         "revolutions": attrs["model_lyapunov_revolutions"],
         "transient_revolutions": attrs["model_lyapunov_transient_revolutions"],
+        "links": attrs["model_lyapunov_links"],
         "rtol": attrs["model_lyapunov_rtol"],
         "renormalisation_interval_s": attrs["model_lyapunov_interval_s"],
     }
