@@ -188,15 +188,40 @@ def claim_flagship_chaos(inputs: Inputs) -> dict:
         f" ({a.attrs['transient_revolutions']} transient, "
         f"{a.sizes['revolution']} analysed revolutions; one run)"
     )
-    if "model_lyapunov_exponent" in a:
+    model = None
+    if "flagship_model_exponents" in inputs:
+        model = _members_text(pd.read_csv(inputs["flagship_model_exponents"]).iloc[0])
+    elif "model_lyapunov_exponent" in a:
+        model = (
+            f"{float(a.model_lyapunov_exponent):.3g} ± {float(a.model_lyapunov_stderr):.2g} 1/s "
+            "(one run)"
+        )
+    if model is not None:
         evidence = (
-            f"model-based largest exponent of the linkage (Benettin on the model's own "
-            f"integrator): {float(a.model_lyapunov_exponent):.3g} ± "
-            f"{float(a.model_lyapunov_stderr):.2g} 1/s. Per-channel time-series exponents "
-            f"(Rosenstein, the paper's method), on which the signs are judged: {evidence}. "
-            + MODEL_AND_CHANNEL_EXPONENTS
+            "model-based largest exponent of the linkage (Benettin on the model's own "
+            f"integrator): {model}. Per-channel time-series exponents (Rosenstein, the paper's "
+            f"method), on which the signs are judged: {evidence}. " + MODEL_AND_CHANNEL_EXPONENTS
         )
     return _row(claim, verdict, evidence)
+
+
+def _members_text(row: pd.Series) -> str:
+    """A case's model exponent over its members (a row of the model_exponent table)."""
+    n = int(row.members)
+    stderr = f"mean member standard error {row.mean_member_stderr_per_s:.2g} 1/s"
+    links = "rigid links" if row.links == "rigid" else "the run's links"
+    span = f"{links}, {row.revolutions:g} revolutions, {row.transient_revolutions:g} transient"
+    if n == 1:
+        return (
+            f"{row.median_exponent_per_s:.3g} ± {row.mean_member_stderr_per_s:.2g} 1/s "
+            f"(one member: no interval over members; {span})"
+        )
+    return (
+        f"median over {n} members {row.median_exponent_per_s:.3g} 1/s, interval "
+        f"[{row.interval_low_per_s:.3g}, {row.interval_high_per_s:.3g}] 1/s "
+        f"({row.interval_coverage:.1%} distribution-free coverage of the median), {stderr} "
+        f"({span})"
+    )
 
 
 def _third_text(

@@ -32,6 +32,8 @@ def test_dry_run_full_config():
         "sweep_batch",
         "combine_sweep",
         "revolution_table",
+        "model_exponent",
+        "model_exponent_table",
         "landing",
     ):
         assert rule in done.stdout + done.stderr

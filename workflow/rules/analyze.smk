@@ -20,3 +20,28 @@ rule analyze:
         runtime=30,
     shell:
         "sim analyze {input} -o {output} --transient {params.transient} > {log} 2>&1"
+
+
+# The model-based largest Lyapunov exponent (Benettin on the linkage) of every ensemble member
+# of a chaos study, over `model_lyapunov.revolutions` (config: cheaper than the run's length).
+rule model_exponent:
+    input:
+        run=model_exponent_run,
+    output:
+        PATHS["model_exponent"],
+    wildcard_constraints:
+        member="[0-9]+",
+    params:
+        settings=model_lyapunov_settings,
+    conda:
+        "../envs/sim.yaml"
+    log:
+        log_file("model_exponent"),
+    benchmark:
+        benchmark_file("model_exponent")
+    threads: 1
+    resources:
+        mem_mb=2000,
+        runtime=240,
+    script:
+        "../scripts/model_exponent.py"

@@ -348,6 +348,7 @@ STUDY_TARGETS = {
     ),
     "work_precision": ("work_precision_csv", "work_precision_html", "work_precision_figure"),
     "extremes": ("extremes_csv", "extremes_html"),
+    "chaos": ("model_exponent_csv", "model_exponent_html"),
     "crosscheck": ("crosscheck_csv", "crosscheck_html", "crosscheck_summary"),
 }
 
@@ -393,6 +394,7 @@ def landing_inputs(wildcards):
             out[f"{role}_ideal"] = path("ideal", study=name, case=case)
             if has(name, "chaos"):
                 out[f"{role}_analysis"] = path("analysis", study=name, case=case)
+                out[f"{role}_model_exponents"] = path("model_exponent_csv", study=name)
     for role in ("clearance_size", "speed"):
         name = enabled(role)
         if name and has(name, "peaks"):
@@ -462,3 +464,37 @@ def sweep_base_overrides(wildcards):
     keys = study(name)["sweep"]["keys"]
     overrides = case_overrides(name, sweep_points(name)[0][0])
     return [f"{key}={value}" for key, value in overrides.items() if key not in keys]
+
+
+# ---------------------------------------------------------------- model exponent over members
+def model_lyapunov_settings(wildcards):
+    """Duration (revolutions, transient) and, if set, solver tolerances of the model exponent
+    of a chaos study's members: the study's `model_lyapunov` on top of the defaults' (quick:
+    its `quick:` block's on top)."""
+    entry = config["studies"][wildcards.study]
+    settings = {
+        **DEFAULTS["model_lyapunov"],
+        **entry.get("model_lyapunov", {}),
+        **(entry.get("quick", {}).get("model_lyapunov", {}) if QUICK else {}),
+    }
+    if not 0 <= settings["transient"] < settings["revolutions"]:
+        raise ValueError(
+            f"config: studies.{wildcards.study}.model_lyapunov (or the defaults'): transient = "
+            f"{settings['transient']} must lie in [0, revolutions = {settings['revolutions']})"
+        )
+    return settings
+
+
+def model_exponent_run(wildcards):
+    """The run file of the member whose exponent is computed (member 0: the case's run)."""
+    return member_file(wildcards.study, wildcards.case, wildcards.member)
+
+
+def model_exponents_of_study(wildcards):
+    """Every member's exponent file of every case of a study, case by case."""
+    name = wildcards.study
+    return [
+        path("model_exponent", study=name, case=case, member=k)
+        for case in case_names(name)
+        for k in range(ensemble_size(name))
+    ]

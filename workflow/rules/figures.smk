@@ -168,6 +168,30 @@ rule revolution_table:
         "../scripts/revolutions.py"
 
 
+rule model_exponent_table:
+    input:
+        model_exponents_of_study,
+    output:
+        csv=PATHS["model_exponent_csv"],
+        html=report(
+            PATHS["model_exponent_html"],
+            caption="../report/model_exponent.rst",
+            category="{study}",
+            subcategory="tables",
+        ),
+    params:
+        cases=study_cases,
+        statistics=bootstrap_settings,
+    conda:
+        "../envs/sim.yaml"
+    log:
+        log_file("model_exponent_table"),
+    benchmark:
+        benchmark_file("model_exponent_table")
+    script:
+        "../scripts/model_exponent_table.py"
+
+
 rule bifurcation_table:
     input:
         combined=PATHS["bifurcation"],

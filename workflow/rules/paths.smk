@@ -18,6 +18,8 @@ PATHS = {
     "status": f"{STUDY}/status/{{case}}.json",
     # stage 2: chaos analysis (analyze.smk)
     "analysis": f"{STUDY}/analysis/{{case}}.nc",
+    # the model-based exponent of every member (member 0 included: the nominal run)
+    "model_exponent": f"{STUDY}/model-exponent/{{case}}/member-{{member}}.nc",
     # stage 3: sweeps (sweep.smk): a batch folder holds its points' run files and batch.nc
     "sweep_batch": f"{STUDY}/sweep/batch-{{batch}}",
     "bifurcation": f"{STUDY}/bifurcation.nc",
@@ -57,6 +59,8 @@ PATHS = {
     "work_precision_figure": f"{STUDY}/figures/work_precision.png",
     "extremes_csv": f"{STUDY}/tables/extremes.csv",
     "extremes_html": f"{STUDY}/tables/extremes.html",
+    "model_exponent_csv": f"{STUDY}/tables/model_exponent.csv",
+    "model_exponent_html": f"{STUDY}/tables/model_exponent.html",
     # stage 6: report (report.smk)
     "landing": f"{RESULTS}/report/landing.rst",
     "claims": f"{RESULTS}/report/claims.csv",
@@ -68,6 +72,7 @@ JOBS = {
     "run_ideal": "{study}/ideal/{case}",
     "run_tolerant": "{study}/status/{case}",
     "analyze": "{study}/analysis/{case}",
+    "model_exponent": "{study}/model-exponent/{case}/member-{member}",
     "sweep_batch": "{study}/sweep/batch-{batch}",
     "combine_sweep": "{study}/bifurcation",
     "synthesize_recording": "{study}/recording/synthetic",
@@ -86,6 +91,7 @@ JOBS = {
     "bifurcation_figure": "{study}/figures/bifurcation",
     "work_precision": "{study}/tables/work_precision",
     "extremes_table": "{study}/tables/extremes",
+    "model_exponent_table": "{study}/tables/model_exponent",
     "landing": "report/landing",
 }
 

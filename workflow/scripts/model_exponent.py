@@ -1,0 +1,59 @@
+"""The model-based largest Lyapunov exponent of one ensemble member (Benettin on the linkage,
+sim.studies.model_lyapunov) over the study's `model_lyapunov` duration, written atomically with
+the member's index, seed and perturbation.
+
+The member's run file holds its scene as run, perturbation included (sim.run.simulate records
+the perturbed scene), so the exponent starts exactly where the member's run started."""
+
+from sim.results import open_run, scene_of, write_netcdf
+from sim.studies.model_lyapunov import (
+    DEFAULT_INTERVAL_REVOLUTIONS,
+    DEFAULT_TOLERANCES,
+    linkage_lyapunov,
+    model_lyapunov_dataset,
+    with_tolerances,
+)
+
+#: the run file's attributes that name the member (sim.ensemble.Member.attrs)
+MEMBER_ATTRS = ("ensemble_member", "ensemble_seed", "perturbation", "perturbation_shift_deg")
+
+
+def main(sm) -> None:
+    settings = sm.params.settings
+    run = open_run(sm.input.run)
+    tolerances = tuple(settings.get("tolerances", DEFAULT_TOLERANCES))
+    scene = with_tolerances(scene_of(run), tolerances)
+    rigid = settings.get("links", "run") == "rigid" or bool(run.attrs.get("model_rigid", 0))
+    if rigid:
+        scene["solver"]["method"] = "dopri5"  # rigid links belong to the explicit method
+    result = linkage_lyapunov(
+        scene,
+        revolutions=settings["revolutions"],
+        transient_revolutions=settings["transient"],
+        interval_revolutions=settings.get("interval_revolutions", DEFAULT_INTERVAL_REVOLUTIONS),
+        tolerances=tolerances,
+        ideal=bool(run.attrs.get("model_ideal", 0)),
+        rigid=rigid,
+    )
+    out = model_lyapunov_dataset(result, (scene["solver"]["rtol"], scene["solver"]["atol"]))
+    out.attrs.update({key: run.attrs[key] for key in MEMBER_ATTRS})
+    out.attrs.update(
+        {
+            "study": sm.wildcards.study,
+            "case": sm.wildcards.case,
+            "source_run": str(sm.input.run),
+            "model_lyapunov_revolutions": settings["revolutions"],
+            "model_lyapunov_transient_revolutions": settings["transient"],
+            "model_lyapunov_links": settings.get("links", "run"),
+        }
+    )
+    write_netcdf(out, sm.output[0])
+    with open(sm.log[0], "w") as log:
+        log.write(
+            f"member {run.attrs['ensemble_member']}: {result.exponent:.4g} ± "
+            f"{result.stderr:.2g} 1/s over {settings['revolutions']} revolutions "
+            f"({settings['transient']} transient), rtol {scene['solver']['rtol']:g}\n"
+        )
+
+
+main(snakemake)  # noqa: F821 (injected by Snakemake)
