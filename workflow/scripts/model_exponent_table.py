@@ -48,7 +48,8 @@ def main(sm) -> None:
     )
     table.to_csv(sm.output.csv, index=False)
     note = (
-        "Benettin on the model's own integrator, one exponent per ensemble member; interval: "
+        "Benettin on the model's own integrator (on the links the links column names), one "
+        "exponent per ensemble member; interval: "
         "order statistics of the members enclosing the population median with the stated "
         f"coverage (the narrowest reaching {level:.0%}, else the range)"
     )
