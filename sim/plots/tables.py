@@ -1,5 +1,7 @@
 """Tables of the workflow (peak values, work–precision, extremes) and their figures."""
 
+from pathlib import Path
+
 import numpy as np
 import pandas as pd
 import xarray as xr
@@ -276,6 +278,12 @@ def extremes_table(statuses: list[dict]) -> pd.DataFrame:
         if column not in table:
             table[column] = np.nan
     return table[EXTREME_COLUMNS]
+
+
+def write_table(table: pd.DataFrame, csv, html, title: str, note: str = "") -> None:
+    """Write a table as CSV (for reading back) and as the report's HTML page (`to_html`)."""
+    table.to_csv(csv, index=False)
+    Path(html).write_text(to_html(table, title, note))
 
 
 def to_html(table: pd.DataFrame, title: str, note: str = "") -> str:

@@ -175,8 +175,7 @@ def rule_crosscheck_table(sm) -> None:
             [{"case": case, "result": "not run", "reason": reason} for case in sm.params.cases]
         )
         note = reason
-    table.to_csv(sm.output.csv, index=False)
-    Path(sm.output.html).write_text(tables.to_html(table, "Cross-check against Exudyn", note))
+    tables.write_table(table, sm.output.csv, sm.output.html, "Cross-check against Exudyn", note)
     _write_json(summary, sm.output.summary)
 
 

@@ -8,7 +8,6 @@ import matplotlib
 
 matplotlib.use("Agg")
 
-import pandas as pd
 import xarray as xr
 
 from sim.plots import bifurcation, chaos, responses, style, tables, trajectories
@@ -17,11 +16,6 @@ from sim.plots import bifurcation, chaos, responses, style, tables, trajectories
 def _open(path) -> xr.Dataset:
     with xr.open_dataset(path) as ds:
         return ds.load()
-
-
-def _write_table(table: pd.DataFrame, output, title: str, note: str = "") -> None:
-    table.to_csv(output.csv, index=False)
-    Path(output.html).write_text(tables.to_html(table, title, note))
 
 
 def rule_responses(sm) -> None:
@@ -48,21 +42,22 @@ def rule_lyapunov_table(sm) -> None:
         f"{analysis.sizes['revolution']} analysed"
     )
     title = f"Largest Lyapunov exponent per joint and axis: {sm.wildcards.case}"
-    _write_table(chaos.lyapunov_table(analysis), sm.output, title, note)
+    tables.write_table(chaos.lyapunov_table(analysis), sm.output.csv, sm.output.html, title, note)
 
 
 def rule_peaks_table(sm) -> None:
     runs = [_open(path) for path in sm.input.runs]
     ideals = [_open(path) for path in sm.input.ideals]
     table = tables.peaks_table(list(sm.params.cases), runs, ideals)
-    _write_table(table, sm.output, f"Peak values: {sm.wildcards.study}")
+    tables.write_table(table, sm.output.csv, sm.output.html, f"Peak values: {sm.wildcards.study}")
 
 
 def rule_bifurcation_table(sm) -> None:
     combined = _open(sm.input.combined)
     table = bifurcation.indicators_table(combined)
     parameter = combined.parameter.attrs.get("name", "parameter")
-    _write_table(table, sm.output, f"Model exponent, 0-1 K and verdicts against {parameter}")
+    title = f"Model exponent, 0-1 K and verdicts against {parameter}"
+    tables.write_table(table, sm.output.csv, sm.output.html, title)
 
 
 def rule_bifurcation_figure(sm) -> None:
@@ -97,7 +92,7 @@ def rule_work_precision(sm) -> None:
         f"{settings['reference']}; long horizon: {len(analyses)} runs against "
         f"{settings['long_reference']} after {settings['transient']} transient revolutions"
     )
-    _write_table(table, sm.output, "Work against precision", note)
+    tables.write_table(table, sm.output.csv, sm.output.html, "Work against precision", note)
     style.save(tables.plot_work_precision(table, settings["window"]), sm.output.figure)
 
 
@@ -106,7 +101,7 @@ def rule_extremes_table(sm) -> None:
     table = tables.extremes_table(statuses)
     counts = table.result.value_counts().to_dict()
     note = ", ".join(f"{n} {result}" for result, n in counts.items())
-    _write_table(table, sm.output, "Extremes: numerical stability", note)
+    tables.write_table(table, sm.output.csv, sm.output.html, "Extremes: numerical stability", note)
 
 
 def main(sm) -> None:

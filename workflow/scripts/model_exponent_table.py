@@ -2,8 +2,6 @@
 distribution-free interval for the median (sim.analysis.members) and the mean of the members'
 own standard errors."""
 
-from pathlib import Path
-
 import pandas as pd
 import xarray as xr
 
@@ -46,7 +44,6 @@ def main(sm) -> None:
             for i, case in enumerate(cases)
         ]
     )
-    table.to_csv(sm.output.csv, index=False)
     note = (
         "Benettin on the model's own integrator (on the links the links column names), one "
         "exponent per ensemble member; interval: "
@@ -54,7 +51,7 @@ def main(sm) -> None:
         f"coverage (the narrowest reaching {level:.0%}, else the range)"
     )
     title = f"Model-based largest Lyapunov exponent over members: {sm.wildcards.study}"
-    Path(sm.output.html).write_text(tables.to_html(table, title, note))
+    tables.write_table(table, sm.output.csv, sm.output.html, title, note)
     with open(sm.log[0], "w") as log:
         log.write(table.to_string() + "\n")
 

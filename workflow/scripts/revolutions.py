@@ -1,8 +1,6 @@
 """Per-revolution peaks of every ensemble member of a study's cases (one row per revolution),
 and their distributions with bootstrap intervals (sim.analysis.revolutions)."""
 
-from pathlib import Path
-
 import pandas as pd
 import xarray as xr
 
@@ -22,14 +20,13 @@ def main(sm) -> None:
     table.to_csv(sm.output.revolutions, index=False)
     boot = Bootstrap(**sm.params.statistics)
     summary = summarise(table, boot)
-    summary.to_csv(sm.output.csv, index=False)
     note = (
         f"{per_case} members per case, {sm.params.transient} transient revolutions dropped; "
         f"{boot.level:.0%} percentile intervals of a two-stage bootstrap (members, then moving "
         f"blocks of revolutions), {boot.resamples} resamples, seed {boot.seed}"
     )
     title = f"Per-revolution peaks: {sm.wildcards.study}"
-    Path(sm.output.html).write_text(tables.to_html(summary, title, note))
+    tables.write_table(summary, sm.output.csv, sm.output.html, title, note)
     with open(sm.log[0], "w") as log:
         log.write(summary.to_string() + "\n")
 
