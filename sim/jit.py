@@ -15,6 +15,16 @@ own file only, so after an edit of a kernel it calls (or a `git pull`) it would
 load the caller compiled against the old callee and silently compute with old
 code. A new digest starts a fresh cache instead.
 
+`kernel_inline` inlines a kernel into its callers when numba compiles them. A kernel call
+that is not inlined passes the `System` and `Work` tuples flattened, field by field, on the
+stack (hundreds of words each); LLVM inlines a callee only while it is small, and stopped
+doing so for the point kinematics and clearance helpers once `System` gained the modal-link
+fields: rigid runs became 1.3 × slower. So what one right-hand side evaluation calls (its
+forces, constraint terms and accelerations, down to the point kinematics) is inlined by
+numba, whatever LLVM would decide; measured on the rigid flagship (docs/performance.md,
+"Inlining the evaluation"), 2.77 → 1.60 s for 20 revolutions, results bit for bit the same.
+`rhs` itself is not inlined: its six calls per Runge–Kutta step would compile six copies.
+
 Kernels release the GIL (``nogil``): they touch only the arrays passed to them, so threads
 of one process can integrate independent runs at once (sim.studies.batch) without copying
 them into other processes.

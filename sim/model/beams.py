@@ -10,7 +10,7 @@ S1 = 1 − 3ξ² + 2ξ³, S2 = l(ξ − 2ξ² + ξ³), S3 = 3ξ² − 2ξ³, S4 
 
 import numpy as np
 
-from sim.jit import kernel
+from sim.jit import kernel, kernel_inline
 from sim.model import ancf, modal
 
 
@@ -45,7 +45,7 @@ def beam_gravity_force(rho_a: float, length: float, elements: int, g: np.ndarray
     return out
 
 
-@kernel
+@kernel_inline
 def beam_forces(sys, q: np.ndarray, qd: np.ndarray, gen: np.ndarray, scratch: np.ndarray):
     """Subtract the elastic forces (and the stiffness-proportional damping forces,
     where a link has a damping coefficient) of every beam and modal link from

@@ -48,7 +48,7 @@ CORNER_SX = (1.0, -1.0, -1.0, 1.0)
 CORNER_SY = (1.0, 1.0, -1.0, -1.0)
 
 
-@kernel
+@kernel_inline
 def eccentricity(sys, j: int, q: np.ndarray) -> tuple[float, float]:
     """Eccentricity vector e = r_J − r_B (m) of revolute clearance j."""
     bx, by = point_position(sys, sys.rj_pts[j, 0], q)
@@ -56,7 +56,7 @@ def eccentricity(sys, j: int, q: np.ndarray) -> tuple[float, float]:
     return jx - bx, jy - by
 
 
-@kernel
+@kernel_inline
 def eccentricity_rate(sys, j: int, q: np.ndarray, qd: np.ndarray) -> tuple[float, float]:
     """ė (m/s) of revolute clearance j."""
     bx, by = point_velocity(sys, sys.rj_pts[j, 0], q, qd, 0.0, 0.0)
@@ -108,7 +108,7 @@ def corner_gap(
     return delta, side * (vx * nx + vy * ny), ax, ay
 
 
-@kernel
+@kernel_inline
 def gap(sys, g: int, q: np.ndarray, qd: np.ndarray) -> tuple[float, float]:
     """Penetration δ (m, negative while apart) and its rate δ̇ (m/s) of gap g."""
     nr = sys.rj_pts.shape[0]
@@ -188,7 +188,7 @@ def _onset_rate(mem: np.ndarray, g: int, rate: float) -> float:
     return rate
 
 
-@kernel
+@kernel_inline
 def revolute_clearance_forces(
     sys, q: np.ndarray, qd: np.ndarray, mem: np.ndarray, gen: np.ndarray, jout: np.ndarray
 ) -> tuple[float, float]:
@@ -331,7 +331,7 @@ def _winkler_edge(sys, j, w, q, qd, mem, gen):
     return fn, ft, pf + (fn - f_el) * rate, u_el, max(da, db)
 
 
-@kernel
+@kernel_inline
 def translational_clearance_forces(
     sys, q: np.ndarray, qd: np.ndarray, mem: np.ndarray, gen: np.ndarray, jout: np.ndarray
 ) -> tuple[float, float]:

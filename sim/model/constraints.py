@@ -9,7 +9,7 @@ Mechanical Systems, 1989). Constraint types are listed in `sim.model.system`.
 
 import numpy as np
 
-from sim.jit import kernel, kernel_inline
+from sim.jit import kernel_inline
 from sim.model.kinematics import (
     add_point_jacobian,
     point_position,
@@ -48,7 +48,7 @@ def _point_terms(sys, k, q, qd, sign, jac, row):
     return q[o] + ax, q[o + 1] + ay, -w2 * ax, -w2 * ay
 
 
-@kernel
+@kernel_inline
 def _coincident_points(sys, c, row, q, qd, phi, jac, gamma):
     """Rows (row, row+1): point i1 minus point i0."""
     p0 = sys.con_i[c, 0]
@@ -62,7 +62,7 @@ def _coincident_points(sys, c, row, q, qd, phi, jac, gamma):
     gamma[row + 1] = a0y - a1y
 
 
-@kernel
+@kernel_inline
 def constraint_terms(
     sys,
     t: float,

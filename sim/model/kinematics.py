@@ -21,7 +21,7 @@ because a node has no rotational coordinate to carry its moment.
 
 import numpy as np
 
-from sim.jit import kernel, kernel_inline
+from sim.jit import kernel_inline
 from sim.model.system import POINT_GROUND, POINT_MODAL, POINT_NODE
 
 
@@ -60,7 +60,7 @@ def _modal_velocity(sys, k: int, q: np.ndarray, qd: np.ndarray) -> tuple[float, 
     return rotate(q[sys.pt_off[k] + 2], vx, vy)
 
 
-@kernel
+@kernel_inline
 def point_position(sys, k: int, q: np.ndarray) -> tuple[float, float]:
     """Global position (m) of point k."""
     kind = sys.pt_kind[k]
@@ -74,7 +74,7 @@ def point_position(sys, k: int, q: np.ndarray) -> tuple[float, float]:
     return q[o] + ax, q[o + 1] + ay
 
 
-@kernel
+@kernel_inline
 def point_velocity(
     sys, k: int, q: np.ndarray, qd: np.ndarray, ox: float, oy: float
 ) -> tuple[float, float]:
@@ -97,7 +97,7 @@ def point_velocity(
     return vx, vy
 
 
-@kernel
+@kernel_inline
 def point_quadratic_acceleration(sys, k: int, q: np.ndarray, qd: np.ndarray) -> tuple[float, float]:
     """The part of r̈ not proportional to q̈: −θ̇² A u for rigid points, plus
     2 θ̇ k × (A Ψ q̇_m) for modal points, zero otherwise."""
@@ -115,7 +115,7 @@ def point_quadratic_acceleration(sys, k: int, q: np.ndarray, qd: np.ndarray) -> 
     return -w2 * ax, -w2 * ay
 
 
-@kernel
+@kernel_inline
 def add_point_jacobian(sys, k: int, q: np.ndarray, sign: float, jac: np.ndarray, row: int) -> None:
     """Add sign·∂r_k/∂q into rows (row, row+1) of `jac`."""
     kind = sys.pt_kind[k]
@@ -136,7 +136,7 @@ def add_point_jacobian(sys, k: int, q: np.ndarray, sign: float, jac: np.ndarray,
         jac[row + 1, o + 3 + m] += sign * py
 
 
-@kernel
+@kernel_inline
 def apply_point_force(
     sys, k: int, q: np.ndarray, fx: float, fy: float, ox: float, oy: float, gen: np.ndarray
 ) -> None:

@@ -30,7 +30,7 @@ import math
 
 import numpy as np
 
-from sim.jit import kernel
+from sim.jit import kernel, kernel_inline
 
 BETA_L = (4.7300408, 7.8532046, 10.9956078, 14.1371655)
 """β_k L of the first free–free bending modes of a uniform Euler–Bernoulli beam."""
@@ -85,7 +85,7 @@ def point_coefficients(
     return out
 
 
-@kernel
+@kernel_inline
 def modal_forces(sys, q: np.ndarray, qd: np.ndarray, gen: np.ndarray):
     """Subtract the elastic forces ω_k² q_k and damping forces β ω_k² q̇_k of every modal link
     from `gen`; return (dissipated power W, strain energy J)."""

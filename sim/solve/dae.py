@@ -20,7 +20,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from sim.jit import kernel
+from sim.jit import kernel, kernel_inline
 from sim.model.beams import beam_damping_power, beam_forces
 from sim.model.clearance import revolute_clearance_forces, translational_clearance_forces
 from sim.model.constraints import constraint_terms
@@ -209,7 +209,7 @@ def block_times(sys, matrix: np.ndarray, x: np.ndarray, out: np.ndarray) -> None
             out[i] = acc
 
 
-@kernel
+@kernel_inline
 def generalized_forces(sys, work, t: float, q: np.ndarray, qd: np.ndarray, mem: np.ndarray) -> None:
     """Q = gravity + contact − elastic − damping forces into work.gen; the
     dissipated power and stored energies into work.scalars."""
@@ -257,7 +257,7 @@ def rhs(sys, work, mem: np.ndarray, t: float, y: np.ndarray, ydot: np.ndarray) -
     return accelerations(sys, work, qd, ydot)
 
 
-@kernel
+@kernel_inline
 def accelerations(sys, work, qd: np.ndarray, ydot: np.ndarray) -> int:
     """ẏ from the forces and constraint terms that work holds for a state with
     velocities q̇: the Schur-complement solve of the module docstring."""
@@ -336,7 +336,7 @@ def _less_constraint_term(sys, work, base: np.ndarray, mult: np.ndarray, out: np
         out[i] = acc
 
 
-@kernel
+@kernel_inline
 def factored_accelerations(sys, work, qd: np.ndarray, ydot: np.ndarray) -> int:
     """`accelerations` with the Schur complement already factored (`factor_schur`)."""
     n = sys.n
