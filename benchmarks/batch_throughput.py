@@ -100,13 +100,16 @@ def main() -> None:
     parser.add_argument(
         "--indicators",
         action="store_true",
-        help="also each point's model exponent and 0-1 K (needs revolutions >= transient + 20)",
+        help="also each point's model exponent and 0-1 K (needs revolutions >= transient + 20, "
+        "transient >= 1: the exponent aligns over the transient's last revolution)",
     )
     parser.add_argument("--transient", type=int, default=0)
     args = parser.parse_args()
+    if args.indicators and args.transient < 1:
+        parser.error("--indicators needs --transient of at least 1")
     values = [float(v) for v in np.linspace(1e-4, 1e-3, args.points)]
     overrides = [f"simulation.revolutions={args.revolutions}"]
-    indicators = Indicators(tolerances=(1.0, 1.0)) if args.indicators else None
+    indicators = Indicators(alignment_revolutions=1.0) if args.indicators else None
     # compile (or load) every kernel outside the timings
     simulate(load_scene("sixbar", [f"{k}=5e-4" for k in KEYS]), revolutions=0.01)
     with tempfile.TemporaryDirectory() as tmp:

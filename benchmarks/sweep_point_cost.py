@@ -1,14 +1,18 @@
 """Cost of one dense-sweep point: its run and its model-based exponent (issue 17).
 
 For a few points of each bifurcation study of config/config.yaml (its link model, revolutions,
-transient and exponent tolerances), one process times, in CPU seconds (time.process_time: one
+transient and exponent alignment), one process times, in CPU seconds (time.process_time: one
 thread, so other jobs on a shared machine disturb it far less than wall time):
-  - the run (`sim.run.simulate`, the Poincaré points);
-  - the model exponent (`sim.studies.model_lyapunov.linkage_lyapunov`, two trajectories);
-and prints them with the exponent ± its standard error, then each study's estimate: the mean
-per-point cost over the points timed times the number of points, over 2 cores.
+  - the run alone (`sim.run.simulate`);
+  - the point as the sweep computes it: the run with its exponent, the run being the
+    reference trajectory (`sim.studies.model_lyapunov.run_with_exponent`);
+  - with --separate, the exponent as two trajectories of its own from the assembled state
+    (`sim.studies.model_lyapunov.linkage_lyapunov` at the run's tolerances), the way the
+    sweeps computed it before;
+and prints the exponent ± its standard error beside each, then each study's estimate: the mean
+per-point cost over the points timed times the number of points.
 
-Usage: python benchmarks/sweep_point_cost.py [--revolutions N] [--transient N]
+Usage: python benchmarks/sweep_point_cost.py [--alignment R ...] [--separate] [--study NAME]
 """
 
 import argparse
@@ -18,7 +22,7 @@ import yaml
 
 from sim.run import simulate
 from sim.scene import load_scene
-from sim.studies.model_lyapunov import linkage_lyapunov
+from sim.studies.model_lyapunov import linkage_lyapunov, run_with_exponent
 from sim.studies.sweep import point_overrides
 
 #: points timed per study: the ends and the middle of each range
@@ -37,44 +41,63 @@ def cpu(function, *args, **kwargs):
 
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--revolutions", type=float, help="default: the study's")
-    parser.add_argument("--transient", type=int, help="default: the study's")
+    parser.add_argument(
+        "--alignment", type=float, nargs="+", help="alignment revolutions (default: the study's)"
+    )
+    parser.add_argument("--separate", action="store_true", help="also the separate exponent")
+    parser.add_argument("--study", choices=sorted(POINTS), action="append", help="default: all")
     args = parser.parse_args()
     with open("config/config.yaml") as handle:
         config = yaml.safe_load(handle)
-    for name, values in POINTS.items():
+    for name in args.study or POINTS:
         entry = config["studies"][name]
         sweep = entry["sweep"]
-        revolutions = args.revolutions or entry["revolutions"]
-        transient = entry["transient"] if args.transient is None else args.transient
+        revolutions, transient = entry["revolutions"], entry["transient"]
         base = [f"{key}={value}" for key, value in entry.get("overrides", {}).items()]
         base += [f"simulation.revolutions={revolutions}"]
         base += [f"simulation.output_per_revolution={entry['output_per_revolution']}"]
         costs = []
-        for value in values:
+        for value in POINTS[name]:
             scene = load_scene("sixbar", [*base, *point_overrides(sweep["keys"], value)])
             simulate(scene, revolutions=0.01)  # compile or load the kernels outside the timing
             _, run_cpu = cpu(simulate, scene)
-            result, exponent_cpu = cpu(
-                linkage_lyapunov,
-                scene,
-                revolutions=revolutions,
-                transient_revolutions=transient,
-                tolerances=tuple(sweep["lyapunov_tolerances"]),
-            )
-            costs.append(run_cpu + exponent_cpu)
-            print(
-                f"{name} {value:g} {sweep['unit']}: run {run_cpu:.1f} s, exponent "
-                f"{exponent_cpu:.1f} s ({exponent_cpu / run_cpu:.2f} x the run), "
-                f"lambda = {result.exponent:.3g} +- {result.stderr:.2g} 1/s "
-                f"({revolutions:g} revolutions, {transient} transient)",
-                flush=True,
-            )
+            where = f"{name} {value:g} {sweep['unit']}"
+            print(f"{where}: run alone {run_cpu:.1f} s", flush=True)
+            for alignment in args.alignment or [sweep["lyapunov_alignment"]]:
+                (_, _, result), point_cpu = cpu(
+                    run_with_exponent,
+                    scene,
+                    None,
+                    transient_revolutions=transient,
+                    alignment_revolutions=alignment,
+                )
+                print(
+                    f"{where}: run with exponent (alignment {alignment:g} rev) {point_cpu:.1f} s "
+                    f"= {point_cpu / run_cpu:.2f} runs, lambda = {result.exponent:.4g} "
+                    f"+- {result.stderr:.2g} 1/s",
+                    flush=True,
+                )
+            costs.append(point_cpu)
+            if args.separate:
+                solver = scene["solver"]
+                result, exponent_cpu = cpu(
+                    linkage_lyapunov,
+                    scene,
+                    revolutions=revolutions,
+                    transient_revolutions=transient,
+                    tolerances=(solver["rtol"], solver["atol"]),
+                )
+                print(
+                    f"{where}: separate exponent {exponent_cpu:.1f} s "
+                    f"(point {(run_cpu + exponent_cpu) / run_cpu:.2f} runs), lambda = "
+                    f"{result.exponent:.4g} +- {result.stderr:.2g} 1/s",
+                    flush=True,
+                )
         count = sweep["range"][2]
         mean = sum(costs) / len(costs)
         print(
             f"{name}: {mean:.1f} CPU s per point x {count} points = {mean * count / 60:.1f} "
-            f"CPU min, {mean * count / 120:.1f} min on 2 cores",
+            f"CPU min ({revolutions} revolutions, {transient} transient)",
             flush=True,
         )
 

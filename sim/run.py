@@ -400,72 +400,117 @@ def simulate_from(
     output Dataset and the final state, from which a neighbouring scene can continue.
     `member`: the ensemble member (sim.ensemble) whose perturbation applies; its index, seed
     and perturbation are recorded in the Dataset's attributes."""
-    member = Member() if member is None else member
-    scene = perturbed(scene, member)
-    integ = prepare(scene, ideal=ideal, rigid=rigid, revolutions=revolutions, start=start)
-    period = crank_period(scene)
-    n_rev = scene["simulation"]["revolutions"] if revolutions is None else revolutions
-    t_end = n_rev * period
-    bar = Progress(t_end, progress)
-    wall0 = time.perf_counter()
-    chunk = period / 4.0
-    t = 0.0
-    watch = EnergyWatch(integ)
-    while t < t_end:
-        t = min(t + chunk, t_end)
-        status = integ.advance(t)
-        failure = diagnose(integ, status) if status != OK else watch.drift()
-        if failure is not None:
-            bar.close()
-            raise SimulationError(f"scene '{scene['name']}': " + failure)
-        bar.update(t)
-    bar.close()
-    wall = time.perf_counter() - wall0
-    buffers = integ.buffers
-    recorded = (integ.count("outputs"), integ.count("sections"))
-    if recorded != (buffers.out_t.size, buffers.sec_t.size):
-        raise SimulationError(
-            f"scene '{scene['name']}': the integrator recorded {recorded} of "
-            f"{(buffers.out_t.size, buffers.sec_t.size)} samples and sections"
+    run = Run(
+        scene,
+        start,
+        progress=progress,
+        ideal=ideal,
+        rigid=rigid,
+        revolutions=revolutions,
+        member=member,
+    )
+    return run.finish()
+
+
+class Run:
+    """A run in progress (the arguments are those of `simulate_from`): `advance_to` integrates
+    it in pieces of at most a quarter revolution, each checked (integrator status, energy
+    audit), so a caller may pause it where it needs the state (as the model exponent does,
+    sim.studies.model_lyapunov.run_with_exponent); `finish` integrates to the end and returns
+    the output Dataset and the final state. Without pauses the pieces are those of an
+    uninterrupted run, so it is reproduced bit for bit."""
+
+    def __init__(
+        self,
+        scene: dict,
+        start: State | None,
+        *,
+        progress: bool = False,
+        ideal: bool = False,
+        rigid: bool = False,
+        revolutions: float | None = None,
+        member: Member | None = None,
+    ):
+        self.member = Member() if member is None else member
+        self.scene = perturbed(scene, self.member)
+        self.start, self.ideal, self.rigid = start, ideal, rigid
+        self.integ = prepare(
+            self.scene, ideal=ideal, rigid=rigid, revolutions=revolutions, start=start
         )
-    provenance = {
-        "history": f"{datetime.datetime.now(datetime.UTC).isoformat()} sim simulate",
-        "crank_period": period,
-        "model_ideal": int(ideal),
-        "model_rigid": int(rigid),
-        "solver_method": scene["solver"]["method"],
-        "solver_accepted_steps": integ.count("accepted"),
-        "solver_rejected_steps": integ.count("rejected"),
-        "solver_function_evaluations": integ.count("evaluations"),
-        "solver_contact_events": integ.count("events"),
-        "solver_iteration_matrices": integ.count("jacobians"),
-        "solver_newton_failures": integ.count("newton_failures"),
-        "solver_wall_time_s": wall,
-        "real_time_factor": t_end / wall if wall > 0 else float("inf"),
-        "simulated_time_s": t_end,
-        "initial_state": "assembled" if start is None else "continued",
-        **member.attrs(),
-    }
-    n = integ.system.n
-    final = State(
-        q=integ.y[:n].copy(),
-        qd=integ.y[n : 2 * n].copy(),
-        mem=integ.mem.copy(),
-        revolutions=n_rev,
-        omega=omega(scene),
-        system=integ.system,
-        layout=integ.layout,
-    )
-    dataset = build_dataset(
-        times=buffers.out_t,
-        rows=buffers.out_rows,
-        section_rows=buffers.sec_rows,
-        peaks=buffers.peaks,
-        rev_peaks=buffers.rev_peaks,
-        rev_events=buffers.rev_events,
-        bodies=integ.layout.bodies,
-        joints=integ.layout.clearance_joints,
-        scene=scene,
-        provenance=provenance,
-    )
-    return dataset, final
+        self.period = crank_period(self.scene)
+        self.revolutions = (
+            self.scene["simulation"]["revolutions"] if revolutions is None else revolutions
+        )
+        self.t_end = self.revolutions * self.period
+        self.t = 0.0
+        self.wall = 0.0  # s spent integrating this run alone
+        self.bar = Progress(self.t_end, progress)
+        self.watch = EnergyWatch(self.integ)
+
+    def advance_to(self, t_stop: float) -> None:
+        """Integrate up to min(t_stop, the run's end) (s); SimulationError on a failure."""
+        t_stop = min(t_stop, self.t_end)
+        wall0 = time.perf_counter()
+        while self.t < t_stop:
+            self.t = min(self.t + self.period / 4.0, t_stop)
+            status = self.integ.advance(self.t)
+            failure = diagnose(self.integ, status) if status != OK else self.watch.drift()
+            if failure is not None:
+                self.bar.close()
+                raise SimulationError(f"scene '{self.scene['name']}': " + failure)
+            self.bar.update(self.t)
+        self.wall += time.perf_counter() - wall0
+
+    def finish(self) -> tuple[xr.Dataset, State]:
+        """Integrate to the end; the output Dataset and the final state."""
+        self.advance_to(self.t_end)
+        self.bar.close()
+        integ, scene = self.integ, self.scene
+        buffers = integ.buffers
+        recorded = (integ.count("outputs"), integ.count("sections"))
+        if recorded != (buffers.out_t.size, buffers.sec_t.size):
+            raise SimulationError(
+                f"scene '{scene['name']}': the integrator recorded {recorded} of "
+                f"{(buffers.out_t.size, buffers.sec_t.size)} samples and sections"
+            )
+        provenance = {
+            "history": f"{datetime.datetime.now(datetime.UTC).isoformat()} sim simulate",
+            "crank_period": self.period,
+            "model_ideal": int(self.ideal),
+            "model_rigid": int(self.rigid),
+            "solver_method": scene["solver"]["method"],
+            "solver_accepted_steps": integ.count("accepted"),
+            "solver_rejected_steps": integ.count("rejected"),
+            "solver_function_evaluations": integ.count("evaluations"),
+            "solver_contact_events": integ.count("events"),
+            "solver_iteration_matrices": integ.count("jacobians"),
+            "solver_newton_failures": integ.count("newton_failures"),
+            "solver_wall_time_s": self.wall,
+            "real_time_factor": self.t_end / self.wall if self.wall > 0 else float("inf"),
+            "simulated_time_s": self.t_end,
+            "initial_state": "assembled" if self.start is None else "continued",
+            **self.member.attrs(),
+        }
+        n = integ.system.n
+        final = State(
+            q=integ.y[:n].copy(),
+            qd=integ.y[n : 2 * n].copy(),
+            mem=integ.mem.copy(),
+            revolutions=self.revolutions,
+            omega=omega(scene),
+            system=integ.system,
+            layout=integ.layout,
+        )
+        dataset = build_dataset(
+            times=buffers.out_t,
+            rows=buffers.out_rows,
+            section_rows=buffers.sec_rows,
+            peaks=buffers.peaks,
+            rev_peaks=buffers.rev_peaks,
+            rev_events=buffers.rev_events,
+            bodies=integ.layout.bodies,
+            joints=integ.layout.clearance_joints,
+            scene=scene,
+            provenance=provenance,
+        )
+        return dataset, final

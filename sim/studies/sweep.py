@@ -17,43 +17,49 @@ from sim.analysis.bifurcation import (
     combine_sweep,
     section_indicators,
 )
-from sim.model.continuation import ContinuationError
+from sim.model.continuation import ContinuationError, State
 from sim.results import write_netcdf
 from sim.run import simulate_from
 from sim.scene import load_scene
 from sim.studies.batch import contiguous_chunks, run_batch
-from sim.studies.model_lyapunov import linkage_lyapunov
+from sim.studies.model_lyapunov import run_with_exponent
 
 
 @dataclass(frozen=True)
 class Indicators:
-    """The chaos indicators computed at every sweep point.
+    """The chaos indicators computed at every sweep point: the model-based largest Lyapunov
+    exponent over the revolutions after the transient, with the point's run as the reference
+    trajectory (:func:`sim.studies.model_lyapunov.run_with_exponent`), and the channels' 0–1 K,
+    section period and verdict (:func:`sim.analysis.bifurcation.section_indicators`).
 
     Attributes:
-        tolerances: upper bounds on the solver's (rtol, atol) of the model exponent's two
-            trajectories (:func:`sim.studies.model_lyapunov.linkage_lyapunov`); (1, 1) keeps
-            the scene's.
+        alignment_revolutions: revolutions at the end of the transient over which the
+            exponent's perturbed trajectory aligns before recording.
     """
 
-    tolerances: tuple[float, float]
+    alignment_revolutions: float
 
 
-def point_indicators(
-    run: xr.Dataset, scene: dict, transient_revolutions: int, settings: Indicators
-) -> xr.Dataset:
-    """The chaos indicators of one sweep point: the model-based largest Lyapunov exponent
-    (1/s, with its standard error over blocks) of ``scene`` over its ``simulation.revolutions``
-    after ``transient_revolutions`` (from the assembled state, where
-    :func:`~sim.studies.model_lyapunov.linkage_lyapunov` starts), and the channels' 0–1 K,
-    section period and verdict from ``run``
-    (:func:`sim.analysis.bifurcation.section_indicators`)."""
-    result = linkage_lyapunov(
+def simulate_point(
+    scene: dict,
+    start: State | None,
+    transient_revolutions: int,
+    indicators: Indicators | None,
+    progress: bool = False,
+) -> tuple[xr.Dataset, State, xr.Dataset | None]:
+    """One sweep point: its run and final state (:func:`sim.run.simulate_from`) and, with
+    ``indicators``, its chaos indicators (None without)."""
+    if indicators is None:
+        return *simulate_from(scene, start, progress=progress), None
+    run, final, exponent = run_with_exponent(
         scene,
-        revolutions=scene["simulation"]["revolutions"],
+        start,
         transient_revolutions=transient_revolutions,
-        tolerances=settings.tolerances,
+        alignment_revolutions=indicators.alignment_revolutions,
+        progress=progress,
     )
-    return section_indicators(run, transient_revolutions, result.exponent, result.stderr)
+    extra = section_indicators(run, transient_revolutions, exponent.exponent, exponent.stderr)
+    return run, final, extra
 
 
 def model_text(scene: dict) -> str:
@@ -215,15 +221,16 @@ def _run_chunk(
         if continuation and final is not None:
             start, origin = final, f"continued from {label} = {previous_value:g}"
         try:
-            run, final = simulate_from(scene, start, progress=progress)
+            run, final, extra = simulate_point(
+                scene, start, transient_revolutions, indicators, progress
+            )
         except ContinuationError as why:
-            run, final = simulate_from(scene, None, progress=progress)
+            run, final, extra = simulate_point(
+                scene, None, transient_revolutions, indicators, progress
+            )
             origin = f"assembled: no continuation from {label} = {previous_value:g}, {why}"
         run.attrs["initial_state"] = origin
         previous_value = value
         write_netcdf(run, path)
-        extra = (
-            point_indicators(run, scene, transient_revolutions, indicators) if indicators else None
-        )
         points.append((run[list(SECTION_VARIABLES)], extra))
     return points

@@ -24,7 +24,7 @@ def main(snakemake) -> None:
         transient_revolutions=int(snakemake.params.transient),
         continuation=bool(sweep.get("continuation", False)),
         workers=snakemake.threads,
-        indicators=Indicators(tolerances=tuple(sweep["lyapunov_tolerances"])),
+        indicators=Indicators(alignment_revolutions=float(sweep["lyapunov_alignment"])),
         file_names=[f"{name}.nc" for name, _ in points],
     )
     write_netcdf(combined, out_dir / "batch.nc")
