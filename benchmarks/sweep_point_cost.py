@@ -9,8 +9,9 @@ thread, so other jobs on a shared machine disturb it far less than wall time):
   - with --separate, the exponent as two trajectories of its own from the assembled state
     (`sim.studies.model_lyapunov.linkage_lyapunov` at the run's tolerances), the way the
     sweeps computed it before;
-and prints the exponent ± its standard error beside each, then each study's estimate: the mean
-per-point cost over the points timed times the number of points.
+and prints the exponent ± its standard error beside each, then each study's estimate: the
+point cost interpolated log-log between the points timed (held constant beyond them), summed
+over the study's grid.
 
 Usage: python benchmarks/sweep_point_cost.py [--alignment R ...] [--separate] [--study NAME]
 """
@@ -18,6 +19,7 @@ Usage: python benchmarks/sweep_point_cost.py [--alignment R ...] [--separate] [-
 import argparse
 import time
 
+import numpy as np
 import yaml
 
 from sim.run import simulate
@@ -93,11 +95,13 @@ def main() -> None:
                     f"{result.exponent:.4g} +- {result.stderr:.2g} 1/s",
                     flush=True,
                 )
-        count = sweep["range"][2]
-        mean = sum(costs) / len(costs)
+        grid = np.linspace(*sweep["range"][:2], sweep["range"][2])
+        timed = np.log(POINTS[name])
+        clipped = np.log(np.clip(grid, min(POINTS[name]), max(POINTS[name])))
+        total = np.exp(np.interp(clipped, timed, np.log(costs))).sum()
         print(
-            f"{name}: {mean:.1f} CPU s per point x {count} points = {mean * count / 60:.1f} "
-            f"CPU min ({revolutions} revolutions, {transient} transient)",
+            f"{name}: {total / grid.size:.1f} CPU s per point x {grid.size} points = "
+            f"{total / 60:.1f} CPU min ({revolutions} revolutions, {transient} transient)",
             flush=True,
         )
 

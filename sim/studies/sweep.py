@@ -137,7 +137,7 @@ def run_sweep(
         continuation: start each value from the previous value's final state (in its chunk).
         progress: show each run's progress line.
         workers: threads, each carrying a contiguous chunk of the values.
-        indicators: compute each value's chaos indicators (:func:`point_indicators`).
+        indicators: compute each value's chaos indicators (:func:`simulate_point`).
         file_names: the run file of each value in ``out_dir`` (default ``point_file``).
 
     Returns:
