@@ -8,6 +8,7 @@ import math
 import sys
 import time
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 import xarray as xr
@@ -385,40 +386,24 @@ def simulate(
     )[0]
 
 
-def simulate_from(
-    scene: dict,
-    start: State | None,
-    *,
-    progress: bool = False,
-    ideal: bool = False,
-    rigid: bool = False,
-    revolutions: float | None = None,
-    member: Member | None = None,
-) -> tuple[xr.Dataset, State]:
+def simulate_from(scene: dict, start: State | None, **options: Any) -> tuple[xr.Dataset, State]:
     """`simulate`, started from the end of a previous run (`start`, projected onto this
     scene by sim.model.continuation) or, with None, from the assembled state; returns the
     output Dataset and the final state, from which a neighbouring scene can continue.
-    `member`: the ensemble member (sim.ensemble) whose perturbation applies; its index, seed
-    and perturbation are recorded in the Dataset's attributes."""
-    run = Run(
-        scene,
-        start,
-        progress=progress,
-        ideal=ideal,
-        rigid=rigid,
-        revolutions=revolutions,
-        member=member,
-    )
-    return run.finish()
+    `options`: those of `Run` (progress, ideal, rigid, revolutions, and `member`, the
+    ensemble member of sim.ensemble whose perturbation applies; its index, seed and
+    perturbation are recorded in the Dataset's attributes)."""
+    return Run(scene, start, **options).finish()
 
 
 class Run:
-    """A run in progress (the arguments are those of `simulate_from`): `advance_to` integrates
-    it in pieces of at most a quarter revolution, each checked (integrator status, energy
-    audit), so a caller may pause it where it needs the state (as the model exponent does,
-    sim.studies.model_lyapunov.run_with_exponent); `finish` integrates to the end and returns
-    the output Dataset and the final state. Without pauses the pieces are those of an
-    uninterrupted run, so it is reproduced bit for bit."""
+    """A run in progress (the arguments are those of `simulate`, and `start` as for
+    `simulate_from`): `advance_to` integrates it in pieces of at most a quarter revolution,
+    each checked (integrator status, energy audit), so a caller may pause it where it needs
+    the state (as the model exponent does, sim.studies.model_lyapunov.run_with_exponent);
+    `finish` integrates to the end and returns the output Dataset and the final state.
+    Without pauses the pieces are those of an uninterrupted run, so it is reproduced bit for
+    bit."""
 
     def __init__(
         self,
