@@ -44,7 +44,10 @@ def cpu(function, *args, **kwargs):
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument(
-        "--alignment", type=float, nargs="+", help="alignment revolutions (default: the study's)"
+        "--alignment",
+        type=float,
+        nargs="+",
+        help="alignment revolutions (default: the study's); the estimate uses the last",
     )
     parser.add_argument("--separate", action="store_true", help="also the separate exponent")
     parser.add_argument("--study", choices=sorted(POINTS), action="append", help="default: all")
