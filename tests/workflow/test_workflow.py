@@ -124,6 +124,24 @@ def _check_ensembles(work: Path) -> None:
     assert "95% intervals" in peaks.intervals
 
 
+def _check_budget(work: Path) -> None:
+    """benchmarks/workflow_budget.py --measured books every job's benchmark to its study."""
+    import importlib.util
+
+    import pandas as pd
+
+    spec = importlib.util.spec_from_file_location("budget", ROOT / "benchmarks/workflow_budget.py")
+    budget = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(budget)
+    table, counts, _ = budget.measured_table(work / "results")
+    files = list((work / "results/benchmarks").rglob("*.tsv"))
+    assert sum(sum(kinds.values()) for kinds in counts.values()) == len(files)
+    seconds = sum(pd.read_csv(f, sep="\t")["s"].iloc[0] for f in files)
+    assert sum(sum(kinds.values()) for kinds in table.values()) == pytest.approx(seconds)
+    assert {"flagship", "speed", "bifurcation-speed", "fidelity", "report"} <= set(table)
+    assert {"run", "member", "ideal", "model-exponent"} <= set(table["speed"])
+
+
 @pytest.mark.slow
 def test_quick_workflow_end_to_end(tmp_path):
     """The quick configuration in a copy of the workflow, then the report."""
@@ -170,6 +188,7 @@ def test_quick_workflow_end_to_end(tmp_path):
         _check_file(work / name)
     _check_ensembles(work)
     _check_bifurcation(work)
+    _check_budget(work)
     report = _snakemake(
         "--configfile", "config/quick.yaml", "--report", "report.html", cwd=work, timeout=300
     )
