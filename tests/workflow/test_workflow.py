@@ -139,7 +139,7 @@ def _check_budget(work: Path) -> None:
     seconds = sum(pd.read_csv(f, sep="\t")["s"].iloc[0] for f in files)
     assert sum(sum(kinds.values()) for kinds in table.values()) == pytest.approx(seconds)
     assert {"flagship", "speed", "bifurcation-speed", "fidelity", "report"} <= set(table)
-    assert {"run", "member", "ideal", "model-exponent"} <= set(table["speed"])
+    assert {"run", "member", "ideal", "model-exponent"} <= set(table["clearance-size"])
 
 
 @pytest.mark.slow
