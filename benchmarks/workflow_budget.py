@@ -6,17 +6,18 @@ Two modes:
   writes for every job (`RESULTS/benchmarks/<study>/...tsv`, `workflow/rules/paths.smk`): jobs,
   wall seconds and, where Snakemake sampled it, CPU seconds per study and kind of job.
 - the estimate (without `--measured`): the simulation jobs of a configuration (runs,
-  ensemble members, ideal references, the extremes' runs, the synthetic recording, the
-  cross-check's cases, model exponents and sweep batches) run shortened, one at a time, in a
-  scratch copy of the workflow, and each job's cost is extrapolated to its full length. Every
-  duration R runs twice, at r1 = max(0.25, R/50) and r2 = max(0.5, R/20) revolutions (R itself
-  when R is at most that floor, run once; the model exponent's revolutions at floors of 2 and
-  4, its transient in proportion), and the job's wall time is fitted as a + b r through both:
-  a is what the job pays whatever its length (start-up, assembly, writing), b its cost per
-  revolution. Sweeps keep their revolutions and run every `--every`-th point of their grid,
-  scaled by the points left out. Jobs run one at a time (`--cores 1`), so wall seconds are one
-  core's seconds; the chaos analyses, figures and report are not included (seconds each in the
-  quick run: `--measured`).
+  ensemble members, ideal references, the extremes' runs, the synthetic recording, model
+  exponents and sweep batches) run shortened, one at a time, in a scratch copy of the workflow,
+  and each job's cost is extrapolated to its full length. Every duration R runs twice, at
+  r1 = max(0.25, R/50) and r2 = max(0.5, R/20) revolutions (R itself when R is at most that
+  floor, run once; the model exponent's revolutions at floors of 2 and 4, its transient in
+  proportion), and the job's wall time is fitted as a + b r through both: a is what the job
+  pays whatever its length (start-up, assembly, writing), b its cost per revolution. Sweeps
+  keep their revolutions and run every `--every`-th point of their grid, scaled by the points
+  left out. Jobs run one at a time (`--cores 1`), so wall seconds are one core's seconds. Not
+  included: the chaos analyses, figures and report (seconds each in the quick run:
+  `--measured`), and the cross-check, whose chaotic case cannot be shortened below its
+  statistics' transient (it needs the optional Exudyn extra; ~10 min, config/config.yaml).
 
 The full run's wall time on two cores is the sum divided by the throughput two concurrent jobs
 get on the machine (1.2-1.25 x on the shared 2-core machine: docs/performance.md).
@@ -46,15 +47,7 @@ WORKFLOW_ITEMS = ("Snakefile", "config", "workflow", "report", "data")
 #: experiment.smk), in two rounds: Snakemake's --until stops at the first of its rules on a
 #: path, and a model exponent needs its member's run
 SIMULATION_RULES = (
-    (
-        "run",
-        "run_member",
-        "run_ideal",
-        "run_tolerant",
-        "sweep_batch",
-        "synthesize_recording",
-        "crosscheck_case",
-    ),
+    ("run", "run_member", "run_ideal", "run_tolerant", "sweep_batch", "synthesize_recording"),
     ("model_exponent",),
 )
 #: (fraction of the full duration, floor in revolutions) of the two shortened passes
