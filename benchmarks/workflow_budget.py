@@ -146,8 +146,9 @@ def kind_of(stem: str) -> tuple[str, str, str]:
     return study, kind, case
 
 
-def run_pass(config: dict, work: Path, cores: int) -> dict[str, dict]:
-    """Run one pass's simulation jobs in a scratch copy of the workflow; its benchmarks."""
+def run_pass(config: dict, work: Path) -> dict[str, dict]:
+    """Run one pass's simulation jobs in a scratch copy of the workflow, one at a time (so
+    that wall seconds are one core's); its benchmarks."""
     work.mkdir(parents=True)
     for item in WORKFLOW_ITEMS:
         source = ROOT / item
@@ -159,7 +160,7 @@ def run_pass(config: dict, work: Path, cores: int) -> dict[str, dict]:
     (work / "config" / "config.yaml").write_text(yaml.safe_dump(config, sort_keys=False))
     snakemake = shutil.which("snakemake") or str(Path(sys.executable).with_name("snakemake"))
     for rules in SIMULATION_RULES:
-        command = [snakemake, "--cores", str(cores), "--quiet", "--keep-going", "--until", *rules]
+        command = [snakemake, "--cores", "1", "--quiet", "--keep-going", "--until", *rules]
         done = subprocess.run(command, cwd=work, capture_output=True, text=True)
         if done.returncode != 0:
             print(f"some jobs failed (see {work}/logs):\n{done.stderr[-2000:]}", file=sys.stderr)
@@ -202,7 +203,7 @@ def estimate(args) -> None:
         if args.reuse:
             passes.append((read_benchmarks(work / "results"), durations))
         else:
-            passes.append((run_pass(shortened_config, work, 1), durations))
+            passes.append((run_pass(shortened_config, work), durations))
     (first, _), (last, durations) = passes
     table = defaultdict(lambda: defaultdict(float))
     counts = defaultdict(lambda: defaultdict(int))
