@@ -2,7 +2,7 @@
 collected into one bifurcation dataset (``sim sweep``), each value started from its assembled
 state or, by continuation, from the previous value's final state; optionally each value's
 chaos indicators (the model exponent, the 0–1 K) beside them. The values may be shared among
-the threads of one process (:mod:`sim.studies.batch`), each a contiguous chunk."""
+the threads of one process (:mod:`sim.studies.batch`)."""
 
 import json
 from collections.abc import Sequence
@@ -120,10 +120,12 @@ def run_sweep(
     differs (a clearance of 0 makes the joint ideal) starts assembled. Each run's
     ``initial_state`` attribute says which, and why.
 
-    With ``workers`` > 1 the values are split into that many contiguous chunks
-    (:func:`sim.studies.batch.contiguous_chunks`), run by as many threads of this process
-    (:func:`sim.studies.batch.run_batch`); continuation runs along each chunk, so the first
-    value of a chunk starts assembled. Each chunk computes bitwise what it computes alone.
+    With ``workers`` > 1 the values are run by as many threads of this process
+    (:func:`sim.studies.batch.run_batch`), each taking the next value when it is free. With
+    ``continuation`` they are split instead into that many contiguous chunks
+    (:func:`sim.studies.batch.contiguous_chunks`) and continuation runs along each chunk, so
+    the first value of a chunk starts assembled. Every value computes bitwise what it
+    computes alone.
 
     Args:
         scene_source: built-in scene name or YAML path.
@@ -136,7 +138,7 @@ def run_sweep(
             in the combined dataset (every revolution is kept); the indicators drop them.
         continuation: start each value from the previous value's final state (in its chunk).
         progress: show each run's progress line.
-        workers: threads, each carrying a contiguous chunk of the values.
+        workers: threads sharing the values.
         indicators: compute each value's chaos indicators (:func:`simulate_point`).
         file_names: the run file of each value in ``out_dir`` (default ``point_file``).
 
@@ -180,7 +182,14 @@ def run_sweep(
 
         return task
 
-    chunks = contiguous_chunks(len(values), workers)
+    # Continuation runs along contiguous chunks; without it each value is a task of its own,
+    # taken by whichever thread is free, so that costly values (small clearances, slow
+    # speeds, which lie together) do not leave one thread working alone at the end.
+    chunks = (
+        contiguous_chunks(len(values), workers)
+        if continuation
+        else [range(i, i + 1) for i in range(len(values))]
+    )
     points = [
         point for done in run_batch([chunk_task(c) for c in chunks], workers) for point in done
     ]

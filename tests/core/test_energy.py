@@ -85,3 +85,23 @@ def test_the_watch_during_a_run_sees_the_audit_of_the_finished_run(monkeypatch):
     ds = simulate(load_scene("sixbar", ["simulation.revolutions=3", *AB]))
     assert len(seen) >= 12  # at least one look per quarter revolution
     assert seen[-1] == pytest.approx(ds.attrs["energy_error_relative"], rel=1e-12)
+
+
+def test_the_watch_audits_every_quarter_revolution_however_often_the_run_pauses(monkeypatch):
+    """The model exponent pauses its reference run 32 times a revolution; the watch must still
+    audit once per quarter revolution (the audit decodes the recorded rows, and 32 audits a
+    revolution cost 6 % of a sweep point), and its last audit must still see the run's end."""
+    import sim.run
+    from sim.run import Run
+
+    seen = []
+    audit = sim.run.EnergyWatch.audit
+    monkeypatch.setattr(
+        sim.run.EnergyWatch, "audit", lambda self: seen.append(audit(self)) or seen[-1]
+    )
+    run = Run(load_scene("sixbar", ["simulation.revolutions=2", *AB]), None)
+    for k in range(1, 2 * 32 + 1):
+        run.advance_to(k * run.period / 32)
+    ds, _ = run.finish()
+    assert len(seen) == 2 * 4  # one audit per quarter revolution, the last at the end
+    assert seen[-1] == pytest.approx(ds.attrs["energy_error_relative"], rel=1e-12)
