@@ -24,6 +24,7 @@ import yaml
 
 from sim.run import simulate
 from sim.scene import load_scene
+from sim.studies.grid import sweep_grid
 from sim.studies.model_lyapunov import linkage_lyapunov, run_with_exponent
 from sim.studies.sweep import point_overrides
 
@@ -98,7 +99,7 @@ def main() -> None:
                     f"{result.exponent:.4g} +- {result.stderr:.2g} 1/s",
                     flush=True,
                 )
-        grid = np.linspace(*sweep["range"][:2], sweep["range"][2])
+        grid = np.array(sweep_grid(sweep))
         timed = np.log(POINTS[name])
         clipped = np.log(np.clip(grid, min(POINTS[name]), max(POINTS[name])))
         total = np.exp(np.interp(clipped, timed, np.log(costs))).sum()

@@ -40,6 +40,8 @@ from pathlib import Path
 
 import yaml
 
+from sim.studies.grid import sweep_grid
+
 ROOT = Path(__file__).resolve().parent.parent
 #: what a copy of the workflow needs
 WORKFLOW_ITEMS = ("Snakefile", "config", "workflow", "report", "data")
@@ -91,11 +93,8 @@ def shorten(config: dict, index: int, every: int, last: bool) -> tuple[dict, dic
             continue
         entry.pop("quick", None)
         if "sweep" in entry:
-            grid = entry["sweep"].pop("range", None)
-            values = entry["sweep"].get("values")
-            if grid is not None:
-                start, stop, count = grid
-                values = [start + (stop - start) * k / max(count - 1, 1) for k in range(count)]
+            values = sweep_grid(entry["sweep"])
+            entry["sweep"].pop("range", None)
             kept = values[::every]
             entry["sweep"]["values"] = kept
             entry["enabled"] = last

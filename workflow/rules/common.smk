@@ -11,6 +11,8 @@ from pathlib import Path
 
 from snakemake.utils import validate
 
+from sim.studies.grid import sweep_grid
+
 validate(config, schema="../schemas/config.schema.yaml")
 
 QUICK = str(config.get("quick", False)).lower() == "true"
@@ -49,14 +51,6 @@ def study(name):
 def point_name(sweep, value):
     """File name of one sweep point, e.g. clearance-0.0005m or speed-120rpm."""
     return f"{sweep['label']}-{value:g}{sweep['unit']}"
-
-
-def sweep_grid(sweep):
-    """The values of a sweep: its `values`, or `range: [start, stop, count]` evenly spaced."""
-    if "values" in sweep:
-        return list(sweep["values"])
-    start, stop, count = sweep["range"]
-    return [start + (stop - start) * k / max(count - 1, 1) for k in range(count)]
 
 
 def sweep_points(name):
