@@ -1,5 +1,7 @@
 """The sweep grid the workflow and the benchmarks share (sim.studies.grid)."""
 
+import itertools
+
 import pytest
 
 from sim.studies.grid import sweep_grid
@@ -11,7 +13,7 @@ def test_a_range_spans_its_ends_exactly_in_equal_steps():
     grid = sweep_grid({"range": [30.0, 240.0, 211]})
     assert len(grid) == 211
     assert grid[0] == 30.0 and grid[-1] == 240.0
-    assert all(b - a == pytest.approx(1.0, rel=1e-12) for a, b in zip(grid, grid[1:]))
+    assert all(b - a == pytest.approx(1.0, rel=1e-12) for a, b in itertools.pairwise(grid))
 
 
 def test_given_values_are_kept_as_given_and_a_one_point_range_is_its_start():
