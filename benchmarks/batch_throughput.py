@@ -1,25 +1,25 @@
-"""Throughput of batched sweep points: threads of one process against one by one (issue 19).
+"""Throughput of batched sweep points: the worker processes of one job against one by one
+(issue 19).
 
 Runs the same sweep points (the clearance of A and B over 0.1 … 1 mm at 150 rpm, rigid links,
-DOPRI5 at the scene's rtol 1e-5) twice in one process: one by one (`sim.studies.sweep.run_sweep`
-with one worker) and as a batch shared among `--workers` threads (sim.studies.batch: the
-kernels release the GIL). Prints both wall times, the throughput ratio (target ≥ 1.8 with 16
-points on 2 cores), and, of the one-by-one wall time, the shares that hold the GIL: the energy
-watch between compiled calls (every quarter revolution; timed by wrapping
-`sim.run.EnergyWatch.drift`) and everything outside the runs' integration loops (scene
-loading, the output Dataset, writing).
+DOPRI5 at the scene's rtol 1e-5) twice: one by one in this process
+(`sim.studies.sweep.run_sweep` with one worker) and as a batch shared among `--workers` worker
+processes (sim.studies.batch). Prints both wall times, the throughput ratio (target ≥ 1.8 with
+16 points on 2 cores), and, of the one-by-one wall time, the energy watch between compiled
+calls (every quarter revolution; timed by wrapping `sim.run.EnergyWatch.drift`) and
+everything outside the runs' integration loops (scene loading, the output Dataset, writing).
 
 The ratio is meaningful on an otherwise idle machine only: other processes take cores from
-the batch but not from the sequential run's one thread. The cores in use (CPU seconds of the
-process per wall second) show on a busy machine too whether the threads ran at once.
+the batch but not from the sequential run's one process. The cores in use (CPU seconds of the
+processes per wall second) show on a busy machine too whether the workers ran at once.
 
 Usage: python benchmarks/batch_throughput.py [--points 16] [--workers 2] [--revolutions 5]
-       [--indicators]
+       [--indicators] [--transient 0]
 """
 
 import argparse
+import resource
 import tempfile
-import threading
 import time
 from pathlib import Path
 
@@ -27,8 +27,7 @@ import numpy as np
 import xarray as xr
 
 import sim.run
-from sim.model.assembly import crank_period
-from sim.run import prepare, simulate
+from sim.run import simulate
 from sim.scene import load_scene
 from sim.studies.sweep import Indicators, run_sweep
 
@@ -47,37 +46,18 @@ def _timed_drift(drift):
     return wrapper
 
 
-def overlap(revolutions: float) -> tuple[float, float]:
-    """Two threads each advance their own flagship integration by `revolutions` in one
-    compiled call: (seconds both calls were running at once, the longer call's seconds).
-    With the GIL held by the kernels the calls could not overlap at all; on a busy machine this
-    shows the parallelism that the throughput ratio cannot."""
-    scene = load_scene("sixbar", [f"{k}=5e-4" for k in KEYS])
-    t_end = revolutions * crank_period(scene)
-    spans = [None, None]
-    integrations = [prepare(scene, revolutions=revolutions) for _ in spans]
-    ready = threading.Barrier(len(spans))
-
-    def advance(k: int) -> None:
-        ready.wait()
-        start = time.perf_counter()
-        integrations[k].advance(t_end)
-        spans[k] = (start, time.perf_counter())
-
-    threads = [threading.Thread(target=advance, args=(k,)) for k in range(len(spans))]
-    for thread in threads:
-        thread.start()
-    for thread in threads:
-        thread.join()
-    (a0, a1), (b0, b1) = spans
-    return max(0.0, min(a1, b1) - max(a0, b0)), max(a1 - a0, b1 - b0)
+def _cpu_seconds() -> float:
+    """CPU seconds of this process and of its worker processes that have ended."""
+    children = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return time.process_time() + children.ru_utime + children.ru_stime
 
 
 def timed_sweep(
     values, overrides, workers, transient, indicators, out_dir: Path
 ) -> tuple[float, float]:
-    """Wall seconds and CPU seconds (all threads of this process) of one sweep over `values`."""
-    start, cpu = time.perf_counter(), time.process_time()
+    """Wall seconds and CPU seconds (this process and its finished worker processes) of one
+    sweep over `values`."""
+    start, cpu = time.perf_counter(), _cpu_seconds()
     run_sweep(
         "sixbar",
         overrides,
@@ -89,7 +69,7 @@ def timed_sweep(
         workers=workers,
         indicators=indicators,
     )
-    return time.perf_counter() - start, time.process_time() - cpu
+    return time.perf_counter() - start, _cpu_seconds() - cpu
 
 
 def main() -> None:
@@ -130,18 +110,13 @@ def main() -> None:
     print(
         f"{args.points} points x {args.revolutions:g} revolutions"
         f"{' + model exponent and 0-1 K' if indicators else ''}: one by one {alone:.1f} s, "
-        f"{args.workers} threads {batch:.1f} s; throughput ratio {alone / batch:.2f}"
+        f"{args.workers} processes {batch:.1f} s; throughput ratio {alone / batch:.2f}"
     )
     # cores in use: on a busy machine the wall-time ratio says little, but a batch whose
-    # threads ran at once still shows more CPU seconds per wall second than one by one
+    # processes ran at once still shows more CPU seconds per wall second than one by one
     print(
         f"cores in use (CPU s / wall s): one by one {alone_cpu / alone:.2f}, "
-        f"{args.workers} threads {batch_cpu / batch:.2f}"
-    )
-    both, longest = overlap(3.0)
-    print(
-        f"two threads' compiled calls (3 revolutions each) ran at once for {both:.2f} s of "
-        f"{longest:.2f} s"
+        f"{args.workers} processes {batch_cpu / batch:.2f}"
     )
     print(
         f"one by one, of {alone:.1f} s: energy watch {WATCH_SECONDS[0]:.2f} s "

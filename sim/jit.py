@@ -26,8 +26,8 @@ numba, whatever LLVM would decide; measured on the rigid flagship (docs/performa
 `rhs` itself is not inlined: its six calls per Runge–Kutta step would compile six copies.
 
 Kernels release the GIL (``nogil``): they touch only the arrays passed to them, so threads
-of one process can integrate independent runs at once (sim.studies.batch) without copying
-them into other processes.
+of one process may integrate independent runs at once. The sweeps' batches use processes
+instead (sim.studies.batch): the Python between compiled calls holds the GIL.
 """
 
 import hashlib

@@ -2,8 +2,9 @@
 collected into one bifurcation dataset (``sim sweep``), each value started from its assembled
 state or, by continuation, from the previous value's final state; optionally each value's
 chaos indicators (the model exponent, the 0–1 K) beside them. The values may be shared among
-the threads of one process (:mod:`sim.studies.batch`)."""
+the worker processes of one job (:mod:`sim.studies.batch`)."""
 
+import functools
 import json
 from collections.abc import Sequence
 from dataclasses import dataclass
@@ -120,7 +121,7 @@ def run_sweep(
     differs (a clearance of 0 makes the joint ideal) starts assembled. Each run's
     ``initial_state`` attribute says which, and why.
 
-    With ``workers`` > 1 the values are run by as many threads of this process
+    With ``workers`` > 1 the values are run by as many worker processes
     (:func:`sim.studies.batch.run_batch`), each taking the next value when it is free. With
     ``continuation`` they are split instead into that many contiguous chunks
     (:func:`sim.studies.batch.contiguous_chunks`) and continuation runs along each chunk, so
@@ -138,7 +139,7 @@ def run_sweep(
             in the combined dataset (every revolution is kept); the indicators drop them.
         continuation: start each value from the previous value's final state (in its chunk).
         progress: show each run's progress line.
-        workers: threads sharing the values.
+        workers: worker processes sharing the values.
         indicators: compute each value's chaos indicators (:func:`simulate_point`).
         file_names: the run file of each value in ``out_dir`` (default ``point_file``).
 
@@ -167,32 +168,29 @@ def run_sweep(
             )
     paths = [Path(out_dir) / name for name in file_names]
 
-    def chunk_task(chunk: range):
-        def task() -> list[tuple[xr.Dataset, xr.Dataset | None]]:
-            return _run_chunk(
-                [scenes[i] for i in chunk],
-                [values[i] for i in chunk],
-                [paths[i] for i in chunk],
-                label=label,
-                transient_revolutions=transient_revolutions,
-                continuation=continuation,
-                progress=progress and workers == 1,
-                indicators=indicators,
-            )
-
-        return task
-
     # Continuation runs along contiguous chunks; without it each value is a task of its own,
-    # taken by whichever thread is free, so that costly values (small clearances, slow
-    # speeds, which lie together) do not leave one thread working alone at the end.
+    # taken by whichever process is free, so that costly values (small clearances, slow
+    # speeds, which lie together) do not leave one process working alone at the end.
     chunks = (
         contiguous_chunks(len(values), workers)
         if continuation
         else [range(i, i + 1) for i in range(len(values))]
     )
-    points = [
-        point for done in run_batch([chunk_task(c) for c in chunks], workers) for point in done
+    tasks = [
+        functools.partial(
+            _run_chunk,
+            [scenes[i] for i in chunk],
+            [values[i] for i in chunk],
+            [paths[i] for i in chunk],
+            label=label,
+            transient_revolutions=transient_revolutions,
+            continuation=continuation,
+            progress=progress and workers == 1,
+            indicators=indicators,
+        )
+        for chunk in chunks
     ]
+    points = [point for done in run_batch(tasks, workers) for point in done]
     combined = combine_sweep(
         [section for section, _ in points],
         ",".join(keys),

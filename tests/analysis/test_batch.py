@@ -1,4 +1,8 @@
-"""Batched sweeps: points shared among threads compute bitwise what they compute alone."""
+"""Batched sweeps: points shared among worker processes compute bitwise what they compute
+alone."""
+
+import functools
+import operator
 
 import numpy as np
 import pytest
@@ -45,9 +49,9 @@ def assert_same_runs(left: list[xr.Dataset], right: list[xr.Dataset]) -> None:
         assert a.attrs["initial_state"] == b.attrs["initial_state"]
 
 
-def test_threads_compute_what_the_points_compute_one_by_one(tmp_path):
-    """Two threads over four points against one thread: no state is shared, so the runs are
-    bitwise identical (a shared work array would mix the trajectories at once)."""
+def test_processes_compute_what_the_points_compute_one_by_one(tmp_path):
+    """Two worker processes over four points against one by one in this process: no state is
+    shared, so the runs are bitwise identical."""
     alone = sweep(tmp_path, "alone", CLEARANCES, workers=1, continuation=False)
     batched = sweep(tmp_path, "batched", CLEARANCES, workers=2, continuation=False)
     assert_same_runs(alone, batched)
@@ -55,7 +59,7 @@ def test_threads_compute_what_the_points_compute_one_by_one(tmp_path):
 
 
 def test_continuation_runs_along_each_chunk(tmp_path):
-    """With continuation, each thread's chunk continues as that chunk would alone: the second
+    """With continuation, each process's chunk continues as that chunk would alone: the second
     chunk's first point starts assembled."""
     batched = sweep(tmp_path, "batched", CLEARANCES, workers=2, continuation=True)
     first = sweep(tmp_path, "first", CLEARANCES[:2], workers=1, continuation=True)
@@ -79,13 +83,15 @@ def test_chunks_cover_the_values_in_order():
             assert not lengths or max(lengths) - min(lengths) <= 1
 
 
+def _fails(message: str) -> None:
+    raise ValueError(message)
+
+
 def test_batch_returns_in_task_order_and_raises_a_tasks_error():
-    assert run_batch([lambda k=k: k * k for k in range(7)], 3) == [k * k for k in range(7)]
-
-    def fails() -> None:
-        raise ValueError("point 3 failed")
-
+    squares = [functools.partial(operator.mul, k, k) for k in range(7)]
+    assert run_batch(squares, 3) == [k * k for k in range(7)]
+    one, two = functools.partial(int, 1), functools.partial(int, 2)
     with pytest.raises(ValueError, match="point 3 failed"):
-        run_batch([lambda: 1, fails, lambda: 2], 2)
+        run_batch([one, functools.partial(_fails, "point 3 failed"), two], 2)
     with pytest.raises(ValueError, match="workers = 0"):
         run_batch([], 0)

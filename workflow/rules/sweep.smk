@@ -1,8 +1,8 @@
 # Stage 3: parameter sweeps. A sweep study's points are run in batches: each `sweep_batch` job
-# runs `batch` consecutive points on its threads (sim.studies.batch; continuation along each
-# thread's chunk if the sweep asks), writes their run files and, per point, the model-based
-# exponent, the 0-1 K, the section period and the verdict of every channel; `combine_sweep`
-# stacks the batches into one bifurcation dataset.
+# runs `batch` consecutive points on its cores (sim.studies.batch: a worker process per core;
+# continuation along each worker's chunk if the sweep asks), writes their run files and, per
+# point, the model-based exponent, the 0-1 K, the section period and the verdict of every
+# channel; `combine_sweep` stacks the batches into one bifurcation dataset.
 
 
 localrules:

@@ -1,4 +1,4 @@
-"""Run one batch of sweep points on the job's threads (rule sweep_batch): each point's run file
+"""Run one batch of sweep points on the job's cores (rule sweep_batch): each point's run file
 and the batch's bifurcation dataset with every point's chaos indicators (batch.nc)."""
 
 import time
@@ -31,7 +31,7 @@ def main(snakemake) -> None:
     wall = time.perf_counter() - start
     with open(snakemake.log[0], "w") as log:
         log.write(
-            f"{len(points)} points on {snakemake.threads} threads in {wall:.1f} s "
+            f"{len(points)} points on {snakemake.threads} worker processes in {wall:.1f} s "
             f"({wall / len(points):.2f} s per point)\n"
         )
 
