@@ -8,6 +8,7 @@ output file says what made it (CF conventions 1.8).
 import json
 import os
 import tempfile
+import threading
 from pathlib import Path
 
 import numpy as np
@@ -29,6 +30,10 @@ from sim.quantities import (
 )
 from sim.scene import with_defaults
 from sim.solve.record import column_layout, peak_layout
+
+NETCDF_LOCK = threading.Lock()
+"""Held while a netCDF file is written: the netCDF4 wheels release the GIL inside a library
+that is not built thread-safe, and two threads writing at once crash the process."""
 
 
 def decode_rows(rows: np.ndarray, bodies: list[str], joints: list[str]) -> dict[str, np.ndarray]:
@@ -204,9 +209,7 @@ def write_netcdf(ds: xr.Dataset, path: str | os.PathLike) -> Path:
     """Write `ds` to `path` through a temporary file in the same folder, then
     rename, so that a crash never leaves a half-written file under that name.
 
-    Not thread-safe: the netCDF4 wheels release the GIL inside a library that is not built
-    thread-safe, and two threads writing at once crash the process (batches use processes,
-    :mod:`sim.studies.batch`).
+    Writes are serialised by :data:`NETCDF_LOCK`, so threads may call this.
 
     The file records the library versions it was written with (``library_versions``,
     JSON); a dataset that already carries them (a combination of runs) keeps its own.
@@ -217,7 +220,8 @@ def write_netcdf(ds: xr.Dataset, path: str | os.PathLike) -> Path:
     fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
     os.close(fd)
     try:
-        ds.to_netcdf(tmp, encoding=encoding_for(ds), engine="netcdf4")
+        with NETCDF_LOCK:
+            ds.to_netcdf(tmp, encoding=encoding_for(ds), engine="netcdf4")
         os.replace(tmp, path)
     finally:
         if os.path.exists(tmp):

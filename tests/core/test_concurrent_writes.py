@@ -1,4 +1,4 @@
-"""Run files written from the threads of a batch: the netCDF library underneath is not
+"""Run files written from threads of one process: the netCDF library underneath is not
 thread-safe, so `sim.results.write_netcdf` serialises writes. Without that lock this script
 crashed with a segmentation fault on every one of three tries (2 threads × 40 files)."""
 
