@@ -440,16 +440,15 @@ class Run:
         while self.t < t_stop:
             self.t = min(self.t + self.period / 4.0, t_stop)
             status = self.integ.advance(self.t)
-            # the audit every quarter revolution, however often the caller pauses the run
-            # (the model exponent pauses it 32 times a revolution)
-            audit_due = self.t >= min(self.next_audit, self.t_end)
-            if audit_due:
+            if status != OK:
+                failure = diagnose(self.integ, status)
+            elif self.t >= min(self.next_audit, self.t_end):
+                # the audit every quarter revolution, however often the caller pauses the run
+                # (the model exponent pauses it 32 times a revolution)
                 self.next_audit = self.t + self.period / 4.0
-            failure = (
-                diagnose(self.integ, status)
-                if status != OK
-                else (self.watch.drift() if audit_due else None)
-            )
+                failure = self.watch.drift()
+            else:
+                failure = None
             if failure is not None:
                 self.bar.close()
                 raise SimulationError(f"scene '{self.scene['name']}': " + failure)
