@@ -3,11 +3,14 @@
 Prints, on one core after compilation:
   - the real-time factor (simulated s per wall-clock s) of the rigid six-bar with
     A and B clearances of 0.5 mm at 150 rpm over 20 revolutions, rtol 1e-6 (the
-    scene's own tolerance, 1e-5, with --rtol 1e-5);
+    scene's own tolerance, 1e-5, with --rtol 1e-5), in the scene's minimal coordinates
+    (its ideal joints form a tree: sim.model.tree) or, with --coordinates absolute, in
+    absolute coordinates under multipliers;
   - the start-up cost (import, compilation or cache load, first run) with the
     numba cache cold and warm, each in a fresh process.
 
 Usage: python benchmarks/core_speed.py [--revolutions N] [--rtol R] [--no-startup]
+       [--coordinates minimal|absolute]
 """
 
 import argparse
@@ -45,6 +48,7 @@ def main() -> None:
     parser.add_argument(
         "--no-startup", action="store_true", help="skip the start-up timings (minutes cold)"
     )
+    parser.add_argument("--coordinates", choices=("minimal", "absolute"), default="minimal")
     args = parser.parse_args()
 
     if not args.no_startup:
@@ -59,7 +63,12 @@ def main() -> None:
 
     scene = load_scene(
         "sixbar",
-        [*CASE, f"solver.rtol={args.rtol}", f"simulation.revolutions={args.revolutions}"],
+        [
+            *CASE,
+            f"solver.rtol={args.rtol}",
+            f"simulation.revolutions={args.revolutions}",
+            f"solver.coordinates={args.coordinates}",
+        ],
     )
     simulate(scene, revolutions=0.01)  # compile (or load) outside the timing
     t0 = time.perf_counter()
@@ -67,7 +76,8 @@ def main() -> None:
     wall = time.perf_counter() - t0
     a = ds.attrs
     print(
-        f"rigid six-bar, A+B 0.5 mm, 150 rpm, {args.revolutions:g} rev, rtol {args.rtol:g}: "
+        f"rigid six-bar, A+B 0.5 mm, 150 rpm, {args.revolutions:g} rev, rtol {args.rtol:g}, "
+        f"{args.coordinates} coordinates: "
         f"simulated {a['simulated_time_s']:.2f} s in {wall:.2f} s wall "
         f"(integrator {a['solver_wall_time_s']:.2f} s): real-time factor "
         f"{a['simulated_time_s'] / wall:.2f}"

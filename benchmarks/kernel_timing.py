@@ -2,9 +2,11 @@
 
 pyinstrument sees the compiled integrator as one opaque call, so this script times its
 kernels one by one, each called in a compiled loop (no Python dispatch in the figure), on
-the rigid six-bar with A and B clearances of 0.5 mm at 150 rpm, in a state with contact:
+the rigid six-bar with A and B clearances of 0.5 mm at 150 rpm, in a state with contact,
+in absolute coordinates under multipliers (solver.coordinates: absolute):
 
   - rhs: one full evaluation ẏ = f(t, y);
+  - the same evaluation in the scene's minimal coordinates (sim.model.tree), for comparison;
   - generalized forces: gravity, both clearance joints' contact forces (and beams, none here);
   - revolute / translational clearance forces alone;
   - constraint terms: Φ, Φ_q, γ, ν;
@@ -24,11 +26,12 @@ from sim.model.clearance import revolute_clearance_forces, translational_clearan
 from sim.model.constraints import constraint_terms
 from sim.run import prepare
 from sim.scene import load_scene
-from sim.solve.dae import generalized_forces, rhs
+from sim.solve.dae import generalized_forces, project_onto_tree, rhs
 from sim.solve.linalg import cholesky_in_place, cholesky_solve_in_place
 from sim.solve.status import OK
 
 CASE = ["joints.A.clearance=0.5e-3", "joints.B.clearance=0.5e-3", "solver.rtol=1e-6"]
+ABSOLUTE = "solver.coordinates=absolute"
 
 
 @kernel
@@ -91,7 +94,7 @@ def per_call_us(loop, *args, calls: int) -> float:
 def contact_state(revolutions: float = 5.0):
     """The integrator's state at the first chunk end where both joints are in contact
     (gap 0: the journal of A; gaps 1–8: the slider's corners against the guide walls)."""
-    scene = load_scene("sixbar", CASE)
+    scene = load_scene("sixbar", [*CASE, ABSOLUTE])
     integ = prepare(scene, revolutions=revolutions)
     period = 60.0 / scene["drive"]["speed_rpm"]
     t = 0.0
@@ -117,8 +120,16 @@ def main() -> None:
         f"rigid six-bar, A+B 0.5 mm, state at t = {t:.4f} s (closed gaps {closed}), "
         f"n = {sys.n} coordinates, m = {sys.m} constraints; µs per call, best of 3 × {calls}:"
     )
+    tree = prepare(load_scene("sixbar", CASE), revolutions=1.0)
+    y_tree = y.copy()
+    project_onto_tree(tree.system, tree.work, t, y_tree)
     figures = {
-        "rhs (one evaluation)": per_call_us(_rhs_loop, sys, work, mem, t, y, ydot, calls=calls),
+        "rhs (one evaluation, multipliers)": per_call_us(
+            _rhs_loop, sys, work, mem, t, y, ydot, calls=calls
+        ),
+        "rhs in minimal coordinates": per_call_us(
+            _rhs_loop, tree.system, tree.work, mem, t, y_tree, ydot, calls=calls
+        ),
         "generalized forces": per_call_us(_forces_loop, sys, work, mem, t, y, calls=calls),
         "  revolute clearance (A)": per_call_us(_revolute_loop, sys, work, mem, y, calls=calls),
         "  translational clearance (B)": per_call_us(
@@ -141,8 +152,9 @@ def main() -> None:
         calls=calls,
     )
     parts = sum(figures[k] for k in ("generalized forces", "constraint terms"))
+    # the rest is the multiplier form's
     figures["rest (M⁻¹ products, Schur assembly)"] = (
-        figures["rhs (one evaluation)"] - parts - figures["Schur Cholesky + solve"]
+        figures["rhs (one evaluation, multipliers)"] - parts - figures["Schur Cholesky + solve"]
     )
     for name, value in figures.items():
         print(f"  {name:38s} {value:6.3f}")

@@ -163,6 +163,9 @@ SOLVER = {
     "baumgarte_alpha": _num(0.0, 1e4, "1/s"),
     "baumgarte_beta": _num(0.0, 1e4, "1/s"),
     "max_steps": Field("int", 1, 10**12),
+    # minimal: a rigid mechanism whose ideal joints form a tree integrates its joint angles
+    # (sim.model.tree; DOPRI5 only); absolute: always coordinates under multipliers
+    "coordinates": Field("str", choices=("minimal", "absolute"), required=False, default="minimal"),
 }
 
 
@@ -298,6 +301,7 @@ def with_defaults(scene: dict) -> dict:
     for body in bodies.values() if isinstance(bodies, dict) else ():
         if isinstance(body, dict):
             _fill(body, BODY_COMMON)
+    _fill(out.get("solver"), SOLVER)
     return out
 
 

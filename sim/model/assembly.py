@@ -24,6 +24,7 @@ from sim.model.system import (
     ContactLaw,
     System,
 )
+from sim.model.tree import spanning_tree
 from sim.scene import GROUND
 
 
@@ -91,7 +92,8 @@ def _joint_modulus(scene: dict, names: list[str]) -> float:
 def build_system(scene: dict, *, ideal: bool = False, rigid: bool = False) -> tuple[System, Layout]:
     """Compile `scene` (validated, defaults filled) into arrays with a `SystemBuilder`:
     bodies in the scene's order, then its joints, then the drive. ideal/rigid force
-    every joint ideal / every link rigid."""
+    every joint ideal / every link rigid. With `solver.coordinates: minimal` and DOPRI5, a
+    rigid mechanism whose ideal joints form a tree gets its hinges (sim.model.tree)."""
     contact = scene["contact"]
     builder = SystemBuilder(
         scene["gravity"],
@@ -108,7 +110,12 @@ def build_system(scene: dict, *, ideal: bool = False, rigid: bool = False) -> tu
         _add_joint(builder, scene, name, joint, ideal)
     d = scene["drive"]
     builder.add_drive(d["body"], math.radians(d["initial_angle_deg"]), omega(scene))
-    return builder.freeze()
+    system, layout = builder.freeze()
+    solver = scene["solver"]
+    if solver["coordinates"] == "minimal" and solver["method"] == "dopri5":
+        # generalized-α keeps the multiplier form: its Newton iteration is built on Φ_q
+        system = system._replace(tree=spanning_tree(system))
+    return system, layout
 
 
 def _add_body(builder: SystemBuilder, name: str, body: dict, mat: dict, rigid: bool) -> None:

@@ -28,6 +28,7 @@ from sim.model.system import (
     ContactLaw,
     System,
 )
+from sim.model.tree import HINGE
 from sim.scene import GROUND, SceneError
 
 
@@ -339,6 +340,7 @@ class SystemBuilder:
                 [int(b.elements > 0) for b in self._bodies.values()], dtype=np.int64
             ),
             body_modal=_modal_index(self._bodies.values()),
+            tree=np.zeros(0, dtype=HINGE),
         )
         layout = Layout(
             names,

@@ -146,6 +146,7 @@ class System(NamedTuple):
     ang_idx: np.ndarray  # (nbody, 2) angle coordinate (rigid) or chord nodes (beam)
     body_is_beam: np.ndarray  # (nbody,) 1 for beams
     body_modal: np.ndarray  # (nbody,) index of the modal link (md_*), −1 for other bodies
+    tree: np.ndarray  # (hinges,) sim.model.tree.HINGE: minimal coordinates, empty if unused
 
 
 def n_gaps(system: System) -> int:

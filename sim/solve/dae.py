@@ -11,6 +11,15 @@ block diagonal, so the system is solved through the Schur complement
 S = Φ_q M⁻¹ Φ_qᵀ (small, symmetric positive definite when Φ_q has full row rank):
 S λ = Φ_q M⁻¹ Q − b, then q̈ = M⁻¹ (Q − Φ_qᵀ λ).
 
+A rigid mechanism whose ideal joints form a tree (`System.tree`, sim.model.tree) needs no
+multipliers: with q̇ = J ż and q̈ = J z̈ + a_b in the angles z of its undriven bodies,
+
+    (Jᵀ M J) z̈ = Jᵀ (Q − M a_b),        τ = J_dᵀ (M q̈ − Q)
+
+(Kane & Levinson, Dynamics, 1985: the hinges' reactions do no work along J), J_d the
+driven angle's column and τ the drive torque. It gives the same q̈ as the multiplier form
+on the constraint manifold, without Φ, Φ_q, S or Baumgarte terms.
+
 State y = (q, q̇, W_drive, E_dissipated): the last two are quadratures of the
 drive power τ θ̇ and of the dissipated power, integrated with the motion so that
 the energy audit uses the integrator's own accuracy.
@@ -33,6 +42,7 @@ from sim.model.system import (
     n_clearance_joints,
     n_gaps,
 )
+from sim.model.tree import tree_kinematics
 from sim.solve.linalg import cholesky_in_place, cholesky_solve_in_place
 from sim.solve.status import NONFINITE, OK, SINGULAR
 
@@ -82,6 +92,15 @@ class Work(NamedTuple):
     schur_first: np.ndarray  # (m,) first column where row i of S (and of its factor) can be nonzero
     coord_rows: np.ndarray  # (n, k) the rows of Φ_q that touch each coordinate's mass block
     coord_nrows: np.ndarray  # (n,) how many
+    # Minimal coordinates (System.tree, sim.model.tree); zero-sized without a tree:
+    tree_q: np.ndarray  # (n,) absolute q rebuilt from the angles
+    tree_qd: np.ndarray  # (n,) absolute q̇
+    tree_jac: np.ndarray  # (n, hinges) J = ∂q̇/∂ż, the driven angle's column last
+    tree_bias: np.ndarray  # (n,) centripetal accelerations a_b
+    tree_rot: np.ndarray  # (n, 2) (cos θ, sin θ) of each body, at its offset
+    tree_mass: np.ndarray  # (hinges − 1, hinges − 1) Jᵀ M J, then its Cholesky factor
+    tree_zdd: np.ndarray  # (hinges − 1,) Jᵀ (Q − M a_b), then z̈
+    tree_first: np.ndarray  # (hinges − 1,) zeros: Jᵀ M J is dense
 
 
 def state_size(system: System) -> int:
@@ -155,6 +174,9 @@ def make_work(system: System) -> Work:
         col_block[start:end] = b
     beam_size = 4 * (int(system.beam_nel.max()) + 1) if system.beam_nel.size else 0
     pairs, first, coord_rows, coord_nrows = constraint_sparsity(jac_cols, jac_ncols, col_block)
+    hinges = system.tree.shape[0]
+    free = max(hinges - 1, 0)
+    n_tree = n if hinges else 0
     return Work(
         phi=np.zeros(m),
         jac=np.zeros((m, n)),
@@ -193,6 +215,14 @@ def make_work(system: System) -> Work:
         schur_first=first,
         coord_rows=coord_rows,
         coord_nrows=coord_nrows,
+        tree_q=np.zeros(n_tree),
+        tree_qd=np.zeros(n_tree),
+        tree_jac=np.zeros((n_tree, hinges)),
+        tree_bias=np.zeros(n_tree),
+        tree_rot=np.zeros((n_tree, 2)),
+        tree_mass=np.zeros((free, free)),
+        tree_zdd=np.zeros(free),
+        tree_first=np.zeros(free, dtype=np.int64),
     )
 
 
@@ -248,6 +278,8 @@ def dissipated_power(sys, work, q: np.ndarray, qd: np.ndarray, mem: np.ndarray) 
 @kernel
 def rhs(sys, work, mem: np.ndarray, t: float, y: np.ndarray, ydot: np.ndarray) -> int:
     """ẏ = f(t, y); returns OK, SINGULAR (constraint Jacobian lost rank) or NONFINITE."""
+    if sys.tree.shape[0] > 0:
+        return tree_accelerations(sys, work, mem, t, y, ydot)
     n = sys.n
     q = y[:n]
     qd = y[n : 2 * n]
@@ -337,6 +369,84 @@ def _less_constraint_term(sys, work, base: np.ndarray, mult: np.ndarray, out: np
 
 
 @kernel_inline
+def tree_accelerations(
+    sys, work, mem: np.ndarray, t: float, y: np.ndarray, ydot: np.ndarray
+) -> int:
+    """ẏ of a tree mechanism (module docstring): its kinematics rebuilt from the angles
+    that y holds, the forces there, and the projected equations of motion; the drive
+    torque from the driven angle's column. q̇ in ẏ is the rebuilt one, so ẏ depends on y
+    through the angles and their rates only. OK, SINGULAR or NONFINITE."""
+    n = sys.n
+    q = work.tree_q
+    qd = work.tree_qd
+    jac = work.tree_jac
+    bias = work.tree_bias
+    tree_kinematics(sys, t, y, q, qd, jac, bias, work.tree_rot)
+    generalized_forces(sys, work, t, q, qd, mem)
+    gen = work.gen
+    mz = work.tree_mass
+    zdd = work.tree_zdd
+    free = zdd.shape[0]
+    for a in range(free):
+        acc = 0.0
+        for i in range(n):
+            acc += jac[i, a] * (gen[i] - sys.mass[i, i] * bias[i])
+        zdd[a] = acc
+        for b in range(a + 1):
+            s = 0.0
+            for i in range(n):
+                s += jac[i, a] * sys.mass[i, i] * jac[i, b]
+            mz[a, b] = s
+            mz[b, a] = s
+    if not cholesky_in_place(mz, free, work.tree_first):
+        return SINGULAR
+    cholesky_solve_in_place(mz, free, zdd)
+    qdd = work.qdd
+    torque = 0.0
+    for i in range(n):
+        acc = bias[i]
+        for a in range(free):
+            acc += jac[i, a] * zdd[a]
+        qdd[i] = acc
+        torque += jac[i, free] * (sys.mass[i, i] * acc - gen[i])
+    drive_power = torque * qd[sys.drive_coord]
+    return _finish_derivative(sys, work, qd, torque, drive_power, ydot)
+
+
+@kernel_inline
+def _finish_derivative(sys, work, qd, torque: float, drive_power: float, ydot) -> int:
+    """ẏ = (q̇, q̈, drive power, dissipated power) from work.qdd; the torque into
+    work.scalars. NONFINITE if any entry is not finite, else OK."""
+    n = sys.n
+    work.scalars[SC_DRIVE_TORQUE] = torque
+    for i in range(n):
+        ydot[i] = qd[i]
+        ydot[n + i] = work.qdd[i]
+    ydot[2 * n] = drive_power
+    ydot[2 * n + 1] = work.scalars[SC_DISSIPATED_POWER]
+    for i in range(2 * n + 2):
+        if not np.isfinite(ydot[i]):
+            return NONFINITE
+    return OK
+
+
+@kernel
+def project_onto_tree(sys, work, t: float, y: np.ndarray) -> None:
+    """Overwrite the absolute q and q̇ in y with those the tree's angles and rates give
+    (and the driven angle with the drive's): the projection onto the constraint manifold
+    after an accepted step. A no-op without a tree."""
+    if sys.tree.shape[0] == 0:
+        return
+    n = sys.n
+    tree_kinematics(
+        sys, t, y, work.tree_q, work.tree_qd, work.tree_jac, work.tree_bias, work.tree_rot
+    )
+    for i in range(n):
+        y[i] = work.tree_q[i]
+        y[n + i] = work.tree_qd[i]
+
+
+@kernel_inline
 def factored_accelerations(sys, work, qd: np.ndarray, ydot: np.ndarray) -> int:
     """`accelerations` with the Schur complement already factored (`factor_schur`)."""
     n = sys.n
@@ -367,16 +477,7 @@ def factored_accelerations(sys, work, qd: np.ndarray, ydot: np.ndarray) -> int:
         # constraint force on that coordinate is −λ: the motor's torque.
         torque = -work.rhs[sys.drive_row]
         drive_power = torque * qd[sys.drive_coord]
-    work.scalars[SC_DRIVE_TORQUE] = torque
-    for i in range(n):
-        ydot[i] = qd[i]
-        ydot[n + i] = qdd[i]
-    ydot[2 * n] = drive_power
-    ydot[2 * n + 1] = work.scalars[SC_DISSIPATED_POWER]
-    for i in range(2 * n + 2):
-        if not np.isfinite(ydot[i]):
-            return NONFINITE
-    return OK
+    return _finish_derivative(sys, work, qd, torque, drive_power, ydot)
 
 
 @kernel
