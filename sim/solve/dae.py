@@ -387,17 +387,21 @@ def tree_accelerations(
     mz = work.tree_mass
     zdd = work.tree_zdd
     free = zdd.shape[0]
-    for a in range(free):
-        acc = 0.0
-        for i in range(n):
-            acc += jac[i, a] * (gen[i] - sys.mass[i, i] * bias[i])
-        zdd[a] = acc
-        for b in range(a + 1):
-            s = 0.0
-            for i in range(n):
-                s += jac[i, a] * sys.mass[i, i] * jac[i, b]
-            mz[a, b] = s
-            mz[b, a] = s
+    zdd[:] = 0.0
+    mz[:, :] = 0.0
+    # row by row, the lower triangle only (all the factorisation reads); a body's rows are
+    # zero in the columns of the angles that do not move it
+    for i in range(n):
+        m_i = sys.mass[i, i]
+        f_i = gen[i] - m_i * bias[i]
+        for a in range(free):
+            j_ia = jac[i, a]
+            if j_ia == 0.0:
+                continue
+            zdd[a] += j_ia * f_i
+            mj = m_i * j_ia
+            for b in range(a + 1):
+                mz[a, b] += mj * jac[i, b]
     if not cholesky_in_place(mz, free, work.tree_first):
         return SINGULAR
     cholesky_solve_in_place(mz, free, zdd)
