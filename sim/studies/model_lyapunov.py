@@ -150,10 +150,14 @@ def linkage_lyapunov(
         d0 away in a fixed random direction of (q, q̇); both are integrated by the run's own
         compiled integrator (:class:`LinkagePropagator`), with their contact memory, and the
         separation is renormalised to d0 every ``interval_revolutions``. The perturbation
-        leaves the ideal constraints by d0; Baumgarte stabilisation pulls that component back
-        at its rates (−α ± √(α² − β²)), so it fades within the transient unless the motion is
-        more stable than the stabilisation itself (then the exponent found is the
-        stabilisation's, −α + Re √(α² − β²): the all-ideal mechanism has no other dynamics).
+        leaves the ideal constraints by d0. In minimal coordinates (a rigid tree mechanism,
+        :mod:`sim.model.tree`) the first step's projection drops that component; in absolute
+        coordinates Baumgarte stabilisation pulls it back at its rates (−α ± √(α² − β²)), so
+        it fades within the transient unless the motion is more stable than the stabilisation
+        itself (then the exponent found is the stabilisation's, −α + Re √(α² − β²): the
+        all-ideal mechanism has no other dynamics). Both forms give the same exponent on the
+        flagship (A + B 0.5 mm, 150 rpm, 40 revolutions with 10 transient: 120 ± 11 1/s
+        minimal, 115 ± 9 absolute).
 
     Choosing the parameters:
         tolerances: the two trajectories take different adaptive step sequences, so they also
