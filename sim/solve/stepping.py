@@ -240,6 +240,9 @@ def integrate(sys, work, carry, trajectory, t_end: float, options, buffers, tall
     h = clock.h
     facold = clock.facold
     if not clock.started:
+        # a restored state may lie off a tree mechanism's manifold (a Lyapunov perturbation):
+        # its gaps must be those its forces see
+        project_onto_tree(sys, work, t, y)
         s = rhs(sys, work, mem, t, y, k0)
         tally.evaluations += 1
         if s != OK:
@@ -307,8 +310,6 @@ def integrate(sys, work, carry, trajectory, t_end: float, options, buffers, tall
         for i in range(ny):
             if not np.isfinite(y[i]):
                 return _fail(tally, NONFINITE, t)
-        # a tree mechanism's absolute coordinates follow its angles (k0 depends on these only)
-        project_onto_tree(sys, work, t, y)
         if pending >= 0:
             s = _flip_and_refresh(sys, work, carry, mem, pending, t, y, buffers.rev_events, tally)
             if s != OK:
