@@ -19,10 +19,11 @@ each body's centre of mass, as everywhere in `System` (sim.model.system).
 
 The absolute coordinates stay the integrator's state, so every output, gap and analysis
 reads them as before; they are slaves of (z, ż), rebuilt from the angles at every
-evaluation and after every accepted step (Hairer, Lubich & Wanner, Geometric Numerical
-Integration, 2006, IV.4: projection onto the manifold). Kinematics after Nikravesh,
-Computer-Aided Analysis of Mechanical Systems, 1988, ch. 7 (relative coordinates) and the
-projection of the equations of motion after Kane & Levinson, Dynamics, 1985.
+evaluation, at the end of every step and at every start from a given state (Hairer, Lubich
+& Wanner, Geometric Numerical Integration, 2006, IV.4: projection onto the manifold).
+Kinematics after Nikravesh, Computer-Aided Analysis of Mechanical Systems, 1988, ch. 7
+(relative coordinates) and the projection of the equations of motion after Kane & Levinson,
+Dynamics, 1985.
 """
 
 from collections import deque

@@ -438,7 +438,8 @@ def _finish_derivative(sys, work, qd, torque: float, drive_power: float, ydot) -
 def project_onto_tree(sys, work, t: float, y: np.ndarray) -> None:
     """Overwrite the absolute q and q̇ in y with those the tree's angles and rates give
     (and the driven angle with the drive's): the projection onto the constraint manifold
-    after an accepted step. A no-op without a tree."""
+    at the end of every step, before its events are located, and at every start from a given
+    state. A no-op without a tree."""
     if sys.tree.shape[0] == 0:
         return
     n = sys.n

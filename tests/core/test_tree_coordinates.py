@@ -15,6 +15,7 @@ from sim.run import prepare
 from sim.scene import load_scene
 from sim.solve.dae import SC_DRIVE_TORQUE, project_onto_tree, rhs
 from sim.solve.status import OK
+from sim.studies.model_lyapunov import linkage_lyapunov
 
 FLAGSHIP = ["joints.A.clearance=0.5e-3", "joints.B.clearance=0.5e-3"]
 
@@ -122,8 +123,6 @@ def test_a_lyapunov_restart_near_resting_contact_passes_and_agrees_with_the_mult
     perturbed restarts left the manifold by d0 and the events read the gaps off it, while the
     forces read them from the angles. Both forms follow the same dynamics, so their exponents
     must agree within three combined standard errors (one recorded revolution: ±10-13 1/s)."""
-    from sim.studies.model_lyapunov import linkage_lyapunov
-
     overrides = [
         "joints.A.clearance=2e-4",
         "joints.B.clearance=2e-4",
