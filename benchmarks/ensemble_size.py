@@ -1,7 +1,8 @@
 """How many ensemble members the verdicts need: the clearance-size claims judged on two
 ensembles with different base seeds, for N = 1 … N_max members (sim.ensemble,
-sim.analysis.verdicts). The smallest N from which the two agree (equal, or one undecided) for
-every larger N is the measured ensemble size. Prints one line per N and claim.
+sim.analysis.verdicts). The smallest N from which the two agree (no component of a claim
+supported by one and decided against by the other) for every larger N is the measured ensemble
+size. Prints one line per N and claim.
 
     python benchmarks/ensemble_size.py [--revolutions 30] [--transient 5] [--members 4]
 
@@ -67,15 +68,14 @@ def main() -> None:
     boot = Bootstrap(resamples=2000, level=0.95, seed=20261123)
     for n in range(1, args.members + 1):
         for claim, quantities in CLAIMS.items():
-            verdicts = []
+            components = []
             for base in SEEDS:
                 parts = [tables[case, base, k] for case in CASES for k in range(n)]
                 table = pd.concat(parts, ignore_index=True)
-                verdicts.append(
-                    combine([c.verdict for c in trend(table, list(CASES), quantities, boot)])
-                )
-            agree = "agree" if consistent(*verdicts) else "DISAGREE"
-            print(f"N = {n}  {claim}: {' / '.join(verdicts)} ({agree})", flush=True)
+                components.append([c.verdict for c in trend(table, list(CASES), quantities, boot)])
+            verdicts = " / ".join(combine(c) for c in components)
+            agree = "agree" if consistent(*components) else "DISAGREE"
+            print(f"N = {n}  {claim}: {verdicts} ({agree})", flush=True)
 
 
 if __name__ == "__main__":

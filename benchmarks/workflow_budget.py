@@ -79,6 +79,16 @@ def model_lyapunov(config: dict, name: str) -> dict:
     return {**config["defaults"]["model_lyapunov"], **study}
 
 
+def member_length(config: dict, name: str) -> float:
+    """Revolutions of a study's further ensemble members at most (its `ensemble.revolutions` on
+    top of the defaults'; workflow/rules/common.smk, member_overrides), infinite if unset."""
+    ensemble = {
+        **config["defaults"].get("ensemble", {}),
+        **config["studies"][name].get("ensemble", {}),
+    }
+    return float(ensemble.get("revolutions", float("inf")))
+
+
 def shorten(config: dict, index: int, every: int, last: bool) -> tuple[dict, dict[str, dict]]:
     """The configuration of pass `index` and, per study, {case: (full, run) revolutions} and
     the model exponent's (full, run) revolutions; a sweep study maps "sweep" to the factor of
@@ -121,7 +131,11 @@ def shorten(config: dict, index: int, every: int, last: bool) -> tuple[dict, dic
             "revolutions": run,
             "transient": exponent["transient"] * share,
         }
-        durations[name] = {"cases": cases, "model_exponent": (exponent["revolutions"], run)}
+        durations[name] = {
+            "cases": cases,
+            "model_exponent": (exponent["revolutions"], run),
+            "member_length": member_length(config, name),
+        }
     return config, durations
 
 
@@ -219,6 +233,12 @@ def estimate(args) -> None:
             full, r2 = plan["model_exponent"]
             r1 = shortened(full, PASSES[0][0], EXPONENT_FLOORS[0])
             cost = extrapolate(c1, r1, c2, r2, full)
+        elif kind == "member":
+            # a member runs its case's revolutions, at most the ensemble's in every pass
+            full, r2 = plan["cases"][case]
+            r1 = shortened(full, *PASSES[0])
+            length = plan["member_length"]
+            cost = extrapolate(c1, min(r1, length), c2, min(r2, length), min(full, length))
         elif case in plan["cases"] or kind == "recording":
             # the synthetic recording runs the study's first case (common.smk, synthetic_sets)
             full, r2 = plan["cases"].get(case) or next(iter(plan["cases"].values()))

@@ -2,12 +2,12 @@
 
 Every judge takes `inputs`, a mapping of role to file (the landing rule's named inputs:
 `<role>_run`, `<role>_peaks`, `<role>_revolutions`, ...), and returns rows of
-{claim, verdict, intervals, evidence}. Verdicts: "supported", "not supported", "undecided"
-(the statistical claims: sim.analysis.verdicts), "mixed" (a single-run claim of which part
-holds), "not evaluated" (the study is disabled, not run in this configuration, or needs data
-we do not have). The claims on peaks and impacts compare distributions of per-revolution
-peaks over revolutions and ensemble members with bootstrap intervals; the others are judged on
-one run, as before, and say so.
+{claim, verdict, intervals, evidence}. Verdicts (sim.analysis.verdicts): "supported", "not
+supported", "mixed" (part of the claim holds and part is contradicted), "undecided" (a
+statistical claim that no interval decides against and not every one for), "not evaluated"
+(the study is disabled, not run in this configuration, or needs data we do not have). The
+claims on peaks and impacts compare distributions of per-revolution peaks over revolutions and
+ensemble members with bootstrap intervals; the others are judged on one run, and say so.
 """
 
 import json
@@ -26,7 +26,15 @@ from sim.analysis.revolutions import (
     Bootstrap,
     contact_force,
 )
-from sim.analysis.verdicts import NOT_EVALUATED, combine, intervals_text, trend
+from sim.analysis.verdicts import (
+    MIXED,
+    NOT_EVALUATED,
+    NOT_SUPPORTED,
+    SUPPORTED,
+    combine,
+    intervals_text,
+    trend,
+)
 
 Inputs = Mapping[str, str]
 
@@ -66,7 +74,7 @@ def claim_responses(inputs: Inputs) -> dict:
     dev["drive_torque"] = _deviation(run, ideal, "drive_torque")
     close = dev["position"] < 0.05 and dev["velocity"] < 0.2
     peaky = dev["acceleration"] > 0.5 and dev["drive_torque"] > 0.5
-    verdict = "supported" if close and peaky else ("mixed" if close or peaky else "not supported")
+    verdict = SUPPORTED if close and peaky else (MIXED if close or peaky else NOT_SUPPORTED)
     evidence = (
         "flagship, largest deviation from ideal over the ideal's range: displacement "
         f"{dev['position']:.3g}, velocity {dev['velocity']:.3g}, acceleration "
@@ -180,7 +188,7 @@ def claim_flagship_chaos(inputs: Inputs) -> dict:
     signs = [np.sign(lam.get(c, np.nan)) == s for c, s in expected.items()]
     single = period.get("B.y") == 1
     held = sum(signs) + single
-    verdict = "supported" if held == 5 else ("not supported" if held <= 1 else "mixed")
+    verdict = SUPPORTED if held == 5 else (NOT_SUPPORTED if held <= 1 else MIXED)
     evidence = "; ".join(
         f"{c}: λ = {lam[c]:.3g} 1/s ({verdicts[c]}, section period {period[c]})" for c in lam
     )
@@ -281,7 +289,7 @@ def claim_bifurcation(inputs: Inputs) -> dict:
     if not states:
         verdict = NOT_EVALUATED
     else:
-        verdict = "supported" if all(states) else ("not supported" if not any(states) else "mixed")
+        verdict = SUPPORTED if all(states) else (NOT_SUPPORTED if not any(states) else MIXED)
     return _row(claim, verdict, "; ".join(parts))
 
 
@@ -295,7 +303,7 @@ def claim_all_joints(inputs: Inputs) -> dict:
         with xr.open_dataset(inputs[f"{role}_run"]) as ds:
             cost[role] = 1.0 / float(ds.attrs["real_time_factor"])
     ratio = cost["all_joints"] / cost["flagship"]
-    verdict = "supported" if ratio > 2 else "not supported"
+    verdict = SUPPORTED if ratio > 2 else NOT_SUPPORTED
     evidence = (
         f"solver wall time per simulated second: all joints {cost['all_joints']:.3g} s "
         f"(0.1 mm), A and B {cost['flagship']:.3g} s (0.5 mm); ratio {ratio:.3g} "
@@ -330,7 +338,7 @@ def claim_cross_check(inputs: Inputs) -> dict:
             close &= smooth < 1e-3
             rougher |= max(shares["acceleration"], shares["drive_torque"]) > smooth
     # Agreement where the motion is deterministic; "less" where the beams vibrate.
-    verdict = "supported" if close and rougher else ("mixed" if close else "not supported")
+    verdict = SUPPORTED if close and rougher else (MIXED if close else NOT_SUPPORTED)
     return _row(
         claim,
         verdict,
@@ -360,7 +368,7 @@ def claim_experiment(inputs: Inputs) -> tuple[dict, dict]:
         )
     else:
         corr = metrics.get("correlation", {}).get("mean", np.nan)
-        verdict = "supported" if corr > 0.5 else "not supported"
+        verdict = SUPPORTED if corr > 0.5 else NOT_SUPPORTED
         evidence = f"measured recording: {numbers}"
     return _row(claim, verdict, evidence), meta
 

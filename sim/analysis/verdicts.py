@@ -10,8 +10,10 @@ is "supported" when the interval lies wholly on the expected side of 0, "not sup
 wholly on the other side, and "undecided" when it contains 0.
 
 The claim is "supported" when every component is: an intersection–union test, whose level is
-that of each component without correction (Berger, Technometrics 24, 1982). It is "not
-supported" when some component is decided against it, and "undecided" otherwise.
+that of each component without correction (Berger, Technometrics 24, 1982). It is "mixed" when
+components are decided both ways (say torque grows and acceleration falls: the claim holds for
+one quantity and is contradicted for another), "not supported" when some component is decided
+against it and none for it, and "undecided" otherwise.
 """
 
 import itertools
@@ -31,8 +33,8 @@ from sim.analysis.revolutions import (
 SUPPORTED = "supported"
 NOT_SUPPORTED = "not supported"
 UNDECIDED = "undecided"
+MIXED = "mixed"
 NOT_EVALUATED = "not evaluated"
-VERDICTS = (SUPPORTED, NOT_SUPPORTED, UNDECIDED)
 
 #: readable names of the statistics
 STATISTIC_NAMES = {"median": "median", "p95": "95th percentile"}
@@ -129,20 +131,25 @@ def trend(
 
 
 def combine(verdicts: list[str]) -> str:
-    """A claim's verdict from its components' (intersection–union, Berger 1982)."""
+    """A claim's verdict from its components' (intersection–union, Berger 1982), "mixed" when
+    they are decided both ways."""
     if not verdicts:
         return NOT_EVALUATED
     if all(v == SUPPORTED for v in verdicts):
         return SUPPORTED
-    if any(v == NOT_SUPPORTED for v in verdicts):
-        return NOT_SUPPORTED
+    if NOT_SUPPORTED in verdicts:
+        return MIXED if SUPPORTED in verdicts else NOT_SUPPORTED
     return UNDECIDED
 
 
-def consistent(first: str, second: str) -> bool:
-    """Whether two verdicts on one claim (e.g. from two ensembles) agree: equal, or either
-    undecided."""
-    return first == second or UNDECIDED in (first, second)
+def consistent(first: list[str], second: list[str]) -> bool:
+    """Whether two judgements of one claim (e.g. from two ensembles), given as the verdicts of
+    the same components in the same order, agree: no component is supported in one and decided
+    against in the other (undecided agrees with either). The claims' verdicts then agree too,
+    "mixed" at most against "not supported" where its supported components are undecided."""
+    if len(first) != len(second):
+        raise ValueError(f"{len(first)} against {len(second)} components: not the same claim")
+    return all({a, b} != {SUPPORTED, NOT_SUPPORTED} for a, b in zip(first, second, strict=True))
 
 
 def intervals_text(components: list[Comparison]) -> str:

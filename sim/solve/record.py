@@ -5,6 +5,9 @@ places them in the row, `write_row` fills it in that order (each block marked wi
 quantity's name) and `sim.results` decodes rows with the same layout.
 """
 
+from functools import cache
+from types import MappingProxyType
+
 import numpy as np
 
 from sim.jit import kernel
@@ -28,7 +31,7 @@ from sim.solve.dae import (
     rhs,
 )
 
-Layout = dict[str, tuple[int, tuple[int, ...]]]
+Layout = MappingProxyType  # name -> (first column, shape), read-only
 
 
 def _blocks(quantities, n_bodies: int, n_joints: int, leading: int) -> Layout:
@@ -40,9 +43,10 @@ def _blocks(quantities, n_bodies: int, n_joints: int, leading: int) -> Layout:
         block = shape(q.dims[leading:], n_bodies, n_joints)
         layout[q.name] = (col, block)
         col += int(np.prod(block, dtype=int))
-    return layout
+    return MappingProxyType(layout)
 
 
+@cache  # read at every energy audit, a quarter revolution apart: built once per size
 def column_layout(n_bodies: int, n_joints: int) -> Layout:
     """Name → (first column, shape per sample) of every sampled quantity (`sim.quantities`,
     recorded SAMPLE), in the table's order, which `write_row` follows."""
@@ -63,6 +67,7 @@ def peak_width(n_bodies: int, n_joints: int) -> int:
     return _width(peak_layout(n_bodies, n_joints))
 
 
+@cache
 def peak_layout(n_bodies: int, n_joints: int) -> Layout:
     """Name → (first entry, shape) of every PEAK quantity in the integrator's vector of peaks
     (and in each row of its per-revolution peaks, the REVOLUTION_PEAK quantities in the same

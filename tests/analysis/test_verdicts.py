@@ -7,6 +7,7 @@ import pytest
 
 from sim.analysis.revolutions import Bootstrap, members_matrix, resample, summarise
 from sim.analysis.verdicts import (
+    MIXED,
     NOT_SUPPORTED,
     SUPPORTED,
     UNDECIDED,
@@ -86,8 +87,19 @@ def test_a_component_is_decided_by_its_interval(interval, expected, verdict):
 def test_claims_combine_as_an_intersection_union_test():
     assert combine([SUPPORTED, SUPPORTED]) == SUPPORTED
     assert combine([SUPPORTED, UNDECIDED]) == UNDECIDED
-    assert combine([SUPPORTED, NOT_SUPPORTED, UNDECIDED]) == NOT_SUPPORTED
-    assert consistent(SUPPORTED, UNDECIDED) and not consistent(SUPPORTED, NOT_SUPPORTED)
+    assert combine([NOT_SUPPORTED, UNDECIDED]) == NOT_SUPPORTED
+    # decided both ways: part of the claim holds, part is contradicted
+    assert combine([SUPPORTED, NOT_SUPPORTED, UNDECIDED]) == MIXED
+
+
+def test_two_judgements_agree_when_no_component_flips():
+    assert consistent([SUPPORTED, UNDECIDED], [UNDECIDED, UNDECIDED])
+    # mixed against not supported: the supported component became undecided
+    assert consistent([SUPPORTED, NOT_SUPPORTED], [UNDECIDED, NOT_SUPPORTED])
+    assert not consistent([SUPPORTED, NOT_SUPPORTED], [NOT_SUPPORTED, SUPPORTED])
+    assert not consistent([SUPPORTED], [NOT_SUPPORTED])
+    with pytest.raises(ValueError, match="not the same claim"):
+        consistent([SUPPORTED], [SUPPORTED, SUPPORTED])
 
 
 def test_clear_differences_are_decided_both_ways():
@@ -120,10 +132,10 @@ QUICK_CASES = {"clearance-size": (3, 25), "speed": (3, 2)}
 @pytest.mark.parametrize("study", list(QUICK_CASES))
 @pytest.mark.parametrize("effect", [1.0, 1.05, 1.2, 2.0, 0.8])
 def test_two_ensembles_with_different_seeds_agree(study, effect):
-    """The verdict on a claim from two ensembles drawn with different seeds is the same, or
-    one of them is undecided (issue 17)."""
+    """The judgements of a claim from two ensembles drawn with different seeds agree: no
+    component supported by one and decided against by the other (issue 17)."""
     members, revolutions = QUICK_CASES[study]
-    verdicts = []
+    judgements = []
     for seed in (100, 200):
         table = pd.concat(
             [
@@ -133,8 +145,8 @@ def test_two_ensembles_with_different_seeds_agree(study, effect):
         )
         boot = Bootstrap(resamples=1000, level=0.95, seed=seed)
         quantities = {"slider_acceleration": +1, "drive_torque": +1}
-        components = trend(table, ["low", "high"], quantities, boot)
-        verdicts.append(combine([c.verdict for c in components]))
-    assert consistent(*verdicts), verdicts
+        judgements.append([c.verdict for c in trend(table, ["low", "high"], quantities, boot)])
+    assert consistent(*judgements), judgements
+    verdicts = [combine(j) for j in judgements]
     if effect == 2.0 and study == "clearance-size":
         assert verdicts == [SUPPORTED, SUPPORTED]

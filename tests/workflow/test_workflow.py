@@ -53,6 +53,15 @@ def test_invalid_config_is_rejected(tmp_path):
     assert "wooden" in done.stdout + done.stderr
 
 
+def test_members_shorter_than_the_transient_are_rejected_before_any_job(tmp_path):
+    bad = tmp_path / "short.yaml"
+    bad.write_text("defaults: {ensemble: {members: 1, seed: 1, revolutions: 10}}\n")
+    done = _snakemake("-n", "--configfile", str(bad))
+    assert done.returncode != 0
+    out = done.stdout + done.stderr
+    assert "ensemble.revolutions" in out and "must exceed the study's transient, 20" in out
+
+
 def test_every_rule_has_its_files_named_once():
     # workflow/rules/paths.smk names every file: each rule's log and benchmark (JOBS), and
     # no two names share a pattern (one file, one name).

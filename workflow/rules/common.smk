@@ -175,9 +175,21 @@ def member_draw(wildcards):
     return draw
 
 
-def run_overrides(wildcards):
-    """A case's scene overrides as `key=value` texts (as `sim run --set` takes them)."""
-    overrides = case_overrides(wildcards.study, wildcards.case)
+def member_overrides(wildcards):
+    """A further member's scene overrides as `key=value` texts (as `sim run --set` takes them):
+    its case's, its length the ensemble's `revolutions` (transient included) where that is
+    shorter than the case's."""
+    name = wildcards.study
+    overrides = case_overrides(name, wildcards.case)
+    settings = study(name)
+    length = settings["ensemble"].get("revolutions")
+    if length is not None:
+        if not length > settings["transient"]:
+            raise ValueError(
+                f"config: studies.{name}.ensemble.revolutions (or the defaults'): {length} must "
+                f"exceed the study's transient, {settings['transient']} revolutions"
+            )
+        overrides["simulation.revolutions"] = min(overrides["simulation.revolutions"], length)
     return [f"{key}={value}" for key, value in overrides.items()]
 
 

@@ -29,7 +29,7 @@ rule run_member:
         PATHS["member"],
     params:
         scene=scene_name,
-        overrides=run_overrides,
+        overrides=member_overrides,
         draw=member_draw,
     conda:
         "../envs/sim.yaml"
