@@ -119,6 +119,8 @@ def _check_ensembles(work: Path) -> None:
     import pandas as pd
     import xarray as xr
 
+    from sim.analysis.verdicts import MIXED, NOT_SUPPORTED, SUPPORTED, UNDECIDED
+
     table = pd.read_csv(work / "results/clearance-size/tables/revolutions.csv")
     assert sorted(table.member.unique()) == [0, 1, 2]
     assert (table.groupby(["case", "member"]).size() == 25).all()
@@ -129,7 +131,7 @@ def _check_ensembles(work: Path) -> None:
         assert "revolution_peak_acceleration" in run
     claims = pd.read_csv(work / "results/report/claims.csv").set_index("claim")
     peaks = claims.loc["Larger clearance gives larger acceleration and torque peaks."]
-    assert peaks.verdict in ("supported", "not supported", "undecided")
+    assert peaks.verdict in (SUPPORTED, NOT_SUPPORTED, MIXED, UNDECIDED)
     assert "95% intervals" in peaks.intervals
 
 
