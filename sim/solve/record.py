@@ -5,6 +5,7 @@ places them in the row, `write_row` fills it in that order (each block marked wi
 quantity's name) and `sim.results` decodes rows with the same layout.
 """
 
+from collections.abc import Mapping
 from functools import cache
 from types import MappingProxyType
 
@@ -31,7 +32,7 @@ from sim.solve.dae import (
     rhs,
 )
 
-Layout = MappingProxyType  # name -> (first column, shape), read-only
+Layout = Mapping[str, tuple[int, tuple[int, ...]]]  # read-only: the layouts are cached
 
 
 def _blocks(quantities, n_bodies: int, n_joints: int, leading: int) -> Layout:
