@@ -24,6 +24,7 @@ def test_dry_run_full_config():
     done = _snakemake("-n", "--quiet", "rules")
     assert done.returncode == 0, done.stderr
     for rule in (
+        "compile_kernels",
         "run",
         "run_member",
         "run_ideal",

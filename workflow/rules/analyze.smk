@@ -27,6 +27,7 @@ rule analyze:
 rule model_exponent:
     input:
         run=model_exponent_run,
+        kernels=model_exponent_kernels,
     output:
         PATHS["model_exponent"],
     wildcard_constraints:

@@ -5,12 +5,14 @@ Every study is a config entry (config/config.yaml); this file turns entries into
 those of paths.smk (`PATHS`, `path`), included before this file.
 """
 
+import functools
 import importlib.util
 import shlex
 from pathlib import Path
 
 from snakemake.utils import validate
 
+from sim.scene import load_scene
 from sim.studies.grid import sweep_grid
 
 validate(config, schema="../schemas/config.schema.yaml")
@@ -312,13 +314,17 @@ def recording_meta(wildcards):
     return csv[: -len(".csv")] + ".meta.yaml"
 
 
-def synthetic_sets(wildcards):
-    """`--set` arguments of the synthetic recording's higher-fidelity run: the study's first
+def synthetic_overrides(wildcards):
+    """Scene overrides of the synthetic recording's higher-fidelity run: the study's first
     case with the `experiment.synthetic.overrides` on top."""
-    settings = study(wildcards.study)
     overrides = case_overrides(wildcards.study, case_names(wildcards.study)[0])
-    overrides.update(settings["experiment"]["synthetic"].get("overrides", {}))
-    return format_sets(overrides)
+    overrides.update(study(wildcards.study)["experiment"]["synthetic"].get("overrides", {}))
+    return overrides
+
+
+def synthetic_sets(wildcards):
+    """`--set` arguments of the synthetic recording's run."""
+    return format_sets(synthetic_overrides(wildcards))
 
 
 def synthetic_seed(wildcards):
@@ -504,3 +510,46 @@ def model_exponents_of_study(wildcards):
         for case in case_names(name)
         for k in range(ensemble_size(name))
     ]
+
+
+# ---------------------------------------------------------------- compiled kernels
+@functools.cache
+def scene_method(scene):
+    """The integrator (`solver.method`) a scene names when no override sets it."""
+    return load_scene(scene)["solver"]["method"]
+
+
+def kernels(name, overrides):
+    """The marker of rule compile_kernels for the integrator that a run of study `name` with
+    these scene overrides uses. Its age does not count (`ancient`): it only makes that
+    integrator's kernels compile once, before its first run."""
+    method = overrides.get("solver.method", scene_method(study(name)["scene"]))
+    return ancient(path("kernels", method=method))
+
+
+def case_kernels(wildcards):
+    """The compiled kernels a case's run (and its members) uses."""
+    return kernels(wildcards.study, case_overrides(wildcards.study, wildcards.case))
+
+
+def ideal_kernels(wildcards):
+    """An ideal reference runs the scene's own integrator (IDEAL_IGNORED)."""
+    return kernels(wildcards.study, {})
+
+
+def sweep_kernels(wildcards):
+    """A sweep's points share their integrator: its first point's."""
+    first = sweep_points(wildcards.study)[0][0]
+    return kernels(wildcards.study, case_overrides(wildcards.study, first))
+
+
+def synthetic_kernels(wildcards):
+    return kernels(wildcards.study, synthetic_overrides(wildcards))
+
+
+def model_exponent_kernels(wildcards):
+    """The member's own integrator, or DOPRI5 for the rigid-link exponent
+    (workflow/scripts/model_exponent.py)."""
+    if model_lyapunov_settings(wildcards).get("links", "run") == "rigid":
+        return kernels(wildcards.study, {"solver.method": "dopri5"})
+    return case_kernels(wildcards)

@@ -9,6 +9,8 @@ localrules:
 
 
 rule crosscheck_case:
+    input:
+        kernels=case_kernels,
     output:
         sim=PATHS["crosscheck_sim"],
         exudyn=PATHS["crosscheck_exudyn"],

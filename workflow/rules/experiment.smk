@@ -3,6 +3,8 @@
 
 
 rule synthesize_recording:
+    input:
+        kernels=synthetic_kernels,
     output:
         csv=PATHS["synthetic_recording"],
         meta=PATHS["synthetic_meta"],

@@ -11,6 +11,8 @@ RESULTS = "results"
 STUDY = f"{RESULTS}/{{study}}"
 
 PATHS = {
+    # stage 0: each integrator's kernels compiled once (simulate.smk); deleted after the run
+    "kernels": f"{RESULTS}/kernels/{{method}}.txt",
     # stage 1: runs (workflow/rules/simulate.smk)
     "run": f"{STUDY}/run/{{case}}.nc",
     "member": f"{STUDY}/run/{{case}}/member-{{member}}.nc",
@@ -67,6 +69,7 @@ PATHS = {
 }
 
 JOBS = {
+    "compile_kernels": "kernels/{method}",
     "run": "{study}/run/{case}",
     "run_member": "{study}/run/{case}/member-{member}",
     "run_ideal": "{study}/ideal/{case}",

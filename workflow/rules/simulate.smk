@@ -4,7 +4,31 @@
 # override them (workflow/profiles/*/config.yaml).
 
 
+# Stage 0: each integrator's kernels compiled once, before its first run (sim.studies.kernels);
+# without it the two jobs that -j2 starts together would both compile them. Every simulating
+# rule takes its integrator's marker as an `ancient` input; the marker is deleted once they ran.
+rule compile_kernels:
+    output:
+        temp(PATHS["kernels"]),
+    wildcard_constraints:
+        method="dopri5|generalized_alpha",
+    conda:
+        "../envs/sim.yaml"
+    log:
+        log_file("compile_kernels"),
+    benchmark:
+        benchmark_file("compile_kernels")
+    threads: 1
+    resources:
+        mem_mb=2000,
+        runtime=30,
+    script:
+        "../scripts/compile_kernels.py"
+
+
 rule run:
+    input:
+        kernels=case_kernels,
     output:
         PATHS["run"],
     params:
@@ -25,6 +49,8 @@ rule run:
 
 
 rule run_member:
+    input:
+        kernels=case_kernels,
     output:
         PATHS["member"],
     params:
@@ -46,6 +72,8 @@ rule run_member:
 
 
 rule run_ideal:
+    input:
+        kernels=ideal_kernels,
     output:
         PATHS["ideal"],
     params:
@@ -68,6 +96,7 @@ rule run_ideal:
 rule run_tolerant:
     input:
         ideal=ideal_reference_of_case,
+        kernels=case_kernels,
     output:
         PATHS["status"],
     params:

@@ -10,6 +10,8 @@ localrules:
 
 
 rule sweep_batch:
+    input:
+        kernels=sweep_kernels,
     output:
         directory(PATHS["sweep_batch"]),
     params:
