@@ -196,6 +196,7 @@ def false_nearest_neighbours(
     min_tsep: int = 0,
     rtol: float = 10.0,
     atol: float = 2.0,
+    stop_below: float | None = None,
 ) -> np.ndarray:
     """Fraction of false nearest neighbours for embedding dimensions 1 … max_dim.
 
@@ -212,6 +213,8 @@ def false_nearest_neighbours(
             neighbours (they would almost never be false and hide the unfolding).
         rtol: threshold of criterion 1 (Kennel et al.: 10 to 15).
         atol: threshold of criterion 2 (Kennel et al.: 2).
+        stop_below: if given, stop after the first dimension whose fraction is below it
+            (the higher dimensions' neighbour searches cost the most); later entries are NaN.
 
     Returns:
         Array of length max_dim; entry m − 1 is the fraction for dimension m.
@@ -223,7 +226,7 @@ def false_nearest_neighbours(
     """
     x = np.asarray(x, dtype=float)
     size = np.std(x)
-    fractions = np.empty(max_dim)
+    fractions = np.full(max_dim, np.nan)
     for dim in range(1, max_dim + 1):
         # the extra coordinate x[i + dim * lag] must exist for every vector
         points = delay_embed(x[: len(x) - lag], dim, lag)
@@ -235,6 +238,8 @@ def false_nearest_neighbours(
         grown = np.sqrt(distance[valid] ** 2 + extra**2)
         false = (extra > rtol * distance[valid]) | (grown > atol * size)
         fractions[dim - 1] = false.mean() if false.size else np.nan
+        if stop_below is not None and fractions[dim - 1] < stop_below:
+            break
     return fractions
 
 
@@ -265,7 +270,7 @@ def embedding_dimension(
     References:
         M. B. Kennel, R. Brown, H. D. I. Abarbanel, Physical Review A 45 (1992) 3403–3411.
     """
-    fractions = false_nearest_neighbours(x, lag, max_dim, min_tsep=min_tsep)
+    fractions = false_nearest_neighbours(x, lag, max_dim, min_tsep=min_tsep, stop_below=threshold)
     below = fractions < threshold
     if below.any():
         return int(np.argmax(below)) + 1

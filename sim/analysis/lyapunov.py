@@ -342,19 +342,48 @@ SATURATION_SHIFTS = 8
 NEIGHBOURS = 2
 #: fewest reference points :func:`rosenstein` needs besides the two Theiler windows
 MIN_REFERENCE_POINTS = 10 * N_BLOCKS
+#: numbers held at once by the divergence curve's squared differences (32 MB)
+DIVERGENCE_CHUNK = 1 << 22
 #: neighbour distances below this fraction of the series' standard deviation are rounding
 #: noise (exact recurrences of periodic data), not dynamics; they are raised to it
 DISTANCE_FLOOR = 1e-12
 
 
 def _log_distances(points: np.ndarray, i: np.ndarray, j: np.ndarray, floor: float) -> np.ndarray:
-    """ln of the distance between points i and j, or, for a 2-D j (a neighbourhood of each
-    i), ln of the mean distance from i to them (Kantz 1994); at least ln ``floor``."""
-    if j.ndim == 1:
-        distance = np.linalg.norm(points[i] - points[j], axis=-1)
-    else:
-        distance = np.linalg.norm(points[i][:, None, :] - points[j], axis=-1).mean(axis=1)
-    return np.log(np.maximum(distance, floor))
+    """ln of the distance between points i and j, at least ln ``floor``."""
+    return np.log(np.maximum(np.linalg.norm(points[i] - points[j], axis=-1), floor))
+
+
+def _divergence_sum(
+    x: np.ndarray,
+    ref: np.ndarray,
+    neighbour: np.ndarray,
+    emb_dim: int,
+    lag: int,
+    steps: int,
+    floor: float,
+) -> np.ndarray:
+    """Σ over the reference points ``ref`` of ln(mean distance to their ``neighbour`` rows),
+    k = 0 … ``steps`` − 1 samples later (at least ln ``floor``), for delay vectors of ``x``.
+
+    From the series rather than from the delay vectors: the squared distance of two delay
+    vectors k samples on is the sum of (x[i + s] − x[j + s])² over s = k, k + lag, …,
+    k + (emb_dim − 1) · lag, so each pair's squared differences are formed once for all k,
+    in chunks of reference points that bound the memory (``DIVERGENCE_CHUNK`` numbers).
+    """
+    span = steps + (emb_dim - 1) * lag
+    offsets = np.arange(span)[:, None, None]
+    chunk = max(1, DIVERGENCE_CHUNK // (span * neighbour.shape[1]))
+    total = np.zeros(steps)
+    for first in range(0, len(ref), chunk):
+        i, j = ref[first : first + chunk], neighbour[first : first + chunk]
+        squared = (x[i[None, :, None] + offsets] - x[j[None] + offsets]) ** 2
+        distance2 = squared[:steps].copy()
+        for d in range(1, emb_dim):
+            distance2 += squared[d * lag : d * lag + steps]
+        distance = np.sqrt(distance2).mean(axis=2)
+        total += np.log(np.maximum(distance, floor)).sum(axis=1)
+    return total
 
 
 def _saturation_level(points: np.ndarray, floor: float) -> float:
@@ -589,13 +618,14 @@ def rosenstein(
     neighbour = neighbour[ref]
     floor = DISTANCE_FLOOR * np.std(x)
 
-    # per-block sums rather than the full (trajectory_len × pairs) matrix, to bound memory
-    block_starts = np.array([block[0] for block in np.array_split(np.arange(len(ref)), N_BLOCKS)])
-    block_sizes = np.diff(np.append(block_starts, len(ref)))
-    block_sums = np.empty((trajectory_len, N_BLOCKS))
-    for k in range(trajectory_len):
-        log_d = _log_distances(points, ref + k, neighbour + k, floor)
-        block_sums[k] = np.add.reduceat(log_d, block_starts)
+    blocks = np.array_split(np.arange(len(ref)), N_BLOCKS)
+    block_sizes = np.array([len(block) for block in blocks])
+    block_sums = np.column_stack(
+        [
+            _divergence_sum(x, ref[block], neighbour[block], emb_dim, lag, trajectory_len, floor)
+            for block in blocks
+        ]
+    )
     divergence = block_sums.sum(axis=1) / len(ref)
     block_curves = block_sums / block_sizes
     saturation = _saturation_level(points, floor)

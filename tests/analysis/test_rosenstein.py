@@ -12,7 +12,14 @@ from conftest import (
     ROSSLER_EXPONENT,
 )
 
-from sim.analysis.embedding import embedding_dimension, embedding_lag, mean_period
+from sim.analysis import lyapunov
+from sim.analysis.embedding import (
+    delay_embed,
+    embedding_dimension,
+    embedding_lag,
+    false_nearest_neighbours,
+    mean_period,
+)
 from sim.analysis.lyapunov import MIN_FIT_POINTS, rosenstein
 
 # a RankWarning (a degenerate fit) or any other warning fails the test
@@ -174,3 +181,31 @@ def test_deterministic(stretches):
         second.fit_range,
     )
     np.testing.assert_array_equal(first.divergence, second.divergence)
+
+
+def test_divergence_from_the_series_is_that_of_the_delay_vectors(stretches, monkeypatch):
+    # ln of the mean distance between the delay vectors themselves, followed step by step,
+    # against the sum formed from the series' squared differences (in several chunks)
+    monkeypatch.setattr(lyapunov, "DIVERGENCE_CHUNK", 5000)
+    x, emb_dim, lag, steps = stretches["lorenz"][0][:3000], 3, 15, 40
+    points = delay_embed(x, emb_dim, lag)
+    rng = np.random.default_rng(1)
+    ref = rng.choice(len(points) - steps, 200, replace=False)
+    neighbour = rng.integers(0, len(points) - steps, size=(200, 2))
+    expected = [
+        np.log(np.linalg.norm(points[ref + k, None] - points[neighbour + k], axis=-1).mean(1)).sum()
+        for k in range(steps)
+    ]
+    got = lyapunov._divergence_sum(x, ref, neighbour, emb_dim, lag, steps, 1e-12)
+    np.testing.assert_allclose(got, expected, rtol=1e-12)
+
+
+def test_false_neighbours_stop_at_the_first_dimension_below_the_threshold(stretches):
+    x = stretches["lorenz"][0]
+    lag, min_tsep = embedding_lag(x), round(mean_period(x))
+    every = false_nearest_neighbours(x, lag, 6, min_tsep=min_tsep)
+    early = false_nearest_neighbours(x, lag, 6, min_tsep=min_tsep, stop_below=0.01)
+    dim = int(np.argmax(every < 0.01)) + 1
+    assert dim == 3  # Kennel et al. (1992): Lorenz unfolds in three dimensions
+    np.testing.assert_array_equal(early[:dim], every[:dim])
+    assert np.isnan(early[dim:]).all()
