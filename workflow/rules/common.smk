@@ -544,6 +544,7 @@ def sweep_kernels(wildcards):
 
 
 def synthetic_kernels(wildcards):
+    """The compiled kernels of the synthetic recording's run."""
     return kernels(wildcards.study, synthetic_overrides(wildcards))
 
 
