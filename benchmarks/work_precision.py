@@ -38,15 +38,15 @@ Usage: python benchmarks/work_precision.py [--quick] [--long | --only-long] [--w
 import argparse
 import dataclasses
 import math
-import os
-import tempfile
 import time
 from dataclasses import dataclass
+from pathlib import Path
 
 import pandas as pd
 import xarray as xr
 
 from sim.analysis.run import analyze_run
+from sim.atomic import write_atomically
 from sim.results import scene_of
 from sim.run import SimulationError, simulate
 from sim.scene import SOLVER, load_scene
@@ -390,11 +390,7 @@ def save(frames: dict[str, list[dict]], path: str | None) -> None:
     if not path:
         return
     table = pd.concat([pd.DataFrame(rows).assign(part=part) for part, rows in frames.items()])
-    folder = os.path.dirname(os.path.abspath(path))
-    fd, tmp = tempfile.mkstemp(dir=folder, suffix=".tmp")
-    os.close(fd)
-    table.to_csv(tmp, index=False)
-    os.replace(tmp, path)
+    write_atomically(Path(path).absolute(), lambda temporary: table.to_csv(temporary, index=False))
 
 
 def main() -> None:

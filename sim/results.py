@@ -7,7 +7,6 @@ output file says what made it (CF conventions 1.8).
 
 import json
 import os
-import tempfile
 import threading
 from pathlib import Path
 
@@ -15,6 +14,7 @@ import numpy as np
 import xarray as xr
 
 from sim import __version__
+from sim.atomic import write_atomically
 from sim.provenance import library_versions_json
 from sim.quantities import (
     AXES,
@@ -217,15 +217,12 @@ def write_netcdf(ds: xr.Dataset, path: str | os.PathLike) -> Path:
     path = Path(path)
     ds = ds.assign_attrs(library_versions=ds.attrs.get("library_versions", library_versions_json()))
     path.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=".tmp", dir=path.parent)
-    os.close(fd)
-    try:
+
+    def write(temporary: Path) -> None:
         with NETCDF_LOCK:
-            ds.to_netcdf(tmp, encoding=encoding_for(ds), engine="netcdf4")
-        os.replace(tmp, path)
-    finally:
-        if os.path.exists(tmp):
-            os.remove(tmp)
+            ds.to_netcdf(temporary, encoding=encoding_for(ds), engine="netcdf4")
+
+    write_atomically(path, write)
     return path
 
 

@@ -14,6 +14,7 @@ import numpy as np
 import xarray as xr
 
 from sim import __version__
+from sim.atomic import write_atomically
 from sim.cli.arguments import add_scene_arguments, check_output
 from sim.experiment.alignment import align_simulation
 from sim.experiment.metadata import CHANNEL_AXES, DEFAULT_CHANNEL
@@ -22,7 +23,6 @@ from sim.experiment.recording import (
     Recording,
     load_recording,
     metadata_path,
-    write_atomically,
     write_recording,
 )
 from sim.experiment.sensor import SensorSettings, load_sensor_settings

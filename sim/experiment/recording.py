@@ -11,8 +11,7 @@ import csv
 import io
 import math
 import os
-import tempfile
-from collections.abc import Callable, Mapping
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -21,6 +20,7 @@ import numpy as np
 import pandas as pd
 import yaml
 
+from sim.atomic import write_atomically
 from sim.experiment.errors import RecordingError
 from sim.experiment.metadata import (
     DEFAULT_FILTER_ORDER,
@@ -164,20 +164,6 @@ def write_recording(
     for target, text in ((csv_path, csv_text), (meta_path, meta_text)):
         write_atomically(target, lambda temporary, text=text: temporary.write_text(text, "utf-8"))
     return csv_path
-
-
-def write_atomically(target: Path, write: Callable[[Path], object]) -> None:
-    """Call ``write(temporary)`` for a temporary file beside ``target``, then move it into
-    place with ``os.replace``: a reader never sees a half-written ``target``, and a failed
-    write leaves nothing behind. ``write`` must not rely on the file name's extension."""
-    handle, temporary = tempfile.mkstemp(dir=target.parent, prefix=f".{target.name}.")
-    os.close(handle)
-    try:
-        write(Path(temporary))
-        os.replace(temporary, target)
-    except BaseException:
-        os.unlink(temporary)
-        raise
 
 
 def _parse_csv(text: str, source: str) -> pd.DataFrame:

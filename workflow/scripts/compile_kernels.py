@@ -3,7 +3,7 @@ compile_kernels, sim.studies.kernels); the marker says how long it took and wher
 
 from pathlib import Path
 
-from sim.experiment.recording import write_atomically
+from sim.atomic import write_atomically
 from sim.jit import cache_directory
 from sim.studies.kernels import compile_kernels
 
