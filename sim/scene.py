@@ -103,6 +103,10 @@ BODY_COMMON = {
     # ANCF beams' deflections on the six-bar at a quarter of the steps of three (0.7 %), whose
     # higher frequencies DOPRI5 must resolve; at most 4 (sim.model.modal's tabulated modes)
     "modes": Field("int", 1, 4, required=False, default=1),
+    # free–free axial modes of a modal link after its bending modes (docs/model.md, "Modal
+    # links"); 0 keeps the link axially rigid, whose 5.7-8.6 kHz axial ringing DOPRI5 cannot afford;
+    # the peaks need them (docs/fidelity.md, "Modal links"); at most 3 (sim.model.modal)
+    "axial_modes": Field("int", 0, 3, required=False, default=0),
     # none, as in the paper
     "damping": Field("mapping", required=False, default={"kind": "none"}),
 }

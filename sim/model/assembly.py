@@ -144,8 +144,10 @@ def _add_body(builder: SystemBuilder, name: str, body: dict, mat: dict, rigid: b
             body["length"],
             mat["density"] * width * height,
             mat["youngs_modulus"] * width * height**3 / 12.0,
+            mat["youngs_modulus"] * width * height,
             stiffness_damping_coefficient(body, mat),
             body["modes"],
+            body["axial_modes"],
         )
         return
     builder.add_rigid_body(name, m, j, _local_points(body))

@@ -44,6 +44,7 @@ class Layout:
     constraint_rows: list[tuple[str, int, int]]  # (joint or 'drive', first row, rows)
     points: dict[tuple[str, str], int] = field(default_factory=dict)
     modes: dict[str, int] = field(default_factory=dict)  # modal links' mode counts, else 0
+    axial_modes: dict[str, int] = field(default_factory=dict)  # the axial ones among them
 
     def joint_of_row(self, row: int) -> str:
         """The joint (or 'drive') that owns constraint row `row`."""
@@ -63,6 +64,7 @@ class _Body:
     modes: int = 0  # > 0 for a modal link
     length: float = 0.0  # m, modal links
     rho_a: float = 0.0  # kg/m, modal links
+    axial: int = 0  # axial modes among a modal link's `modes` (the last ones)
 
 
 class SystemBuilder:
@@ -125,22 +127,27 @@ class SystemBuilder:
         length: float,
         rho_a: float,
         ei: float,
+        ea: float,
         beta: float,
         modes: int,
+        axial: int = 0,
     ) -> int:
         """A modal link (sim.model.modal): (x, y, θ) of its mean-axis frame, then `modes`
-        free–free bending modes of a bar of `length`, ρA (kg/m), EI (N m²), stiffness
-        damping β (s); returns its offset."""
+        free–free bending modes and `axial` free–free axial modes of a bar of `length`, ρA
+        (kg/m), EI (N m²), EA (N), stiffness damping β (s); returns its offset."""
         omega = np.zeros(modal.MAX_MODES)
         omega[:modes] = modal.frequencies(length, rho_a, ei, modes)
+        omega[modes : modes + axial] = modal.axial_frequencies(length, rho_a, ea, axial)
+        # transverse shapes at start, middle and end (the axial modes have none)
         shape = np.zeros((3, modal.MAX_MODES))
         for i, x_bar in enumerate((-0.5 * length, 0.0, 0.5 * length)):
             shape[i, :modes] = modal.mode_shapes(x_bar, length, rho_a, modes)
         link = (omega, beta, shape, length)
-        return self._add_framed(name, mass, inertia, points, modes, link, rho_a)
+        return self._add_framed(name, mass, inertia, points, modes + axial, link, rho_a, axial)
 
-    def _add_framed(self, name, mass, inertia, points, modes, link, rho_a=0.0) -> int:
-        """A body whose first coordinates are (x, y, θ) of a frame, then `modes` modal ones."""
+    def _add_framed(self, name, mass, inertia, points, modes, link, rho_a=0.0, axial=0) -> int:
+        """A body whose first coordinates are (x, y, θ) of a frame, then `modes` modal ones
+        (the last `axial` of them axial)."""
         o = self._new_body(name, 3 + modes)
         block = np.zeros((3 + modes, 3 + modes))
         block[0, 0] = block[1, 1] = mass
@@ -155,7 +162,7 @@ class SystemBuilder:
         if modes:
             self._modal.append((o, modes, *link))
         length = link[3] if modes else 0.0
-        self._bodies[name] = _Body(o, points, 0, modes, length, rho_a)
+        self._bodies[name] = _Body(o, points, 0, modes, length, rho_a, axial)
         return o
 
     def add_beam(
@@ -212,7 +219,8 @@ class SystemBuilder:
                     )
                 u = b.points[name]
                 if b.modes:
-                    coeff = modal.point_coefficients(u, b.length, b.rho_a, b.modes)
+                    bending = b.modes - b.axial
+                    coeff = modal.point_coefficients(u, b.length, b.rho_a, bending, b.axial)
                 kind = POINT_MODAL if b.modes else POINT_RIGID
                 point = (kind, b.offset, u, b.modes, coeff)
         self._points[key] = len(self._pt)
@@ -351,6 +359,7 @@ class SystemBuilder:
             self._rows,
             self._points,
             {nm: b.modes for nm, b in self._bodies.items()},
+            {nm: b.axial for nm, b in self._bodies.items()},
         )
         return system, layout
 

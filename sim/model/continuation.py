@@ -95,12 +95,26 @@ def clearance_sizes(system: System) -> np.ndarray:
     return np.concatenate([system.rj["clearance"], slider])
 
 
+def _link_models(layout: Layout) -> list[tuple]:
+    """Each body's link model: (name, beam?, elements, modal coordinates, axial modes)."""
+    return [
+        (
+            b,
+            layout.is_beam[b],
+            layout.elements.get(b),
+            layout.modes.get(b, 0),
+            layout.axial_modes.get(b, 0),
+        )
+        for b in layout.bodies
+    ]
+
+
 def _check_same_model(previous: State, system: System, layout: Layout) -> None:
     old, new = previous.layout, layout
-    model = [(b, old.is_beam[b], old.elements.get(b), old.modes.get(b, 0)) for b in old.bodies]
-    if model != [(b, new.is_beam[b], new.elements.get(b), new.modes.get(b, 0)) for b in new.bodies]:
+    if _link_models(old) != _link_models(new):
         raise ContinuationError(
-            "the previous run has other bodies or link models (rigid, beam, elements, modal, modes)"
+            "the previous run has other bodies or link models "
+            "(rigid, beam, elements, modal, modes, axial modes)"
         )
     if old.clearance_joints != new.clearance_joints:
         raise ContinuationError(

@@ -1,13 +1,16 @@
 """Reduced flexible links (`bodies.<name>.kind: modal`): a floating frame of reference in
-mean axes carrying a few free–free Euler–Bernoulli bending modes.
+mean axes carrying a few free–free Euler–Bernoulli bending modes and, optionally, free–free
+axial modes.
 
 Coordinates of a modal link: (x, y, θ) of its frame, whose origin is the centre of mass and
-whose x axis lies along the undeformed link, then k modal amplitudes q_1…q_k (kg^½ m: the
-modes are mass-normalised). The material point at body-frame (x̄, ȳ) is at
+whose x axis lies along the undeformed link, then k bending amplitudes q_1…q_k and a axial
+amplitudes p_1…p_a (kg^½ m: the modes are mass-normalised). The material point at
+body-frame (x̄, ȳ) is at
 
-    r = R + A(θ) (x̄ − ȳ Σ ψ_k′(x̄) q_k,  ȳ + Σ ψ_k(x̄) q_k)
+    r = R + A(θ) (x̄ − ȳ Σ ψ_k′(x̄) q_k + Σ χ_n(x̄) p_n,  ȳ + Σ ψ_k(x̄) q_k)
 
-(the section stays normal to the deflected axis). The free–free modes of a uniform beam,
+(the section stays normal to the deflected axis). The free–free bending modes of a uniform
+beam,
 ξ = x̄ + L/2 ∈ [0, L] measured from the link's start,
 
     φ_k(ξ) = cosh β_k ξ + cos β_k ξ − σ_k (sinh β_k ξ + sin β_k ξ),
@@ -17,13 +20,17 @@ modes are mass-normalised). The material point at body-frame (x̄, ȳ) is at
 scaled to ψ_k with ∫ ρA ψ_k ψ_l dx = δ_kl, satisfy the mean-axis (Tisserand/Buckens)
 conditions ∫ ρA ψ_k dx = 0 and ∫ ρA x̄ ψ_k dx = 0 exactly (Blevins, Formulas for Natural
 Frequency and Mode Shape, 1979, table 8-1; Shabana, Dynamics of Multibody Systems, 3rd ed.,
-2005, ch. 5; Canavin & Likins, J. Spacecraft 14, 1977). The kinetic energy is then
-T = ½ m |Ṙ|² + ½ (J₀ + Σ q_k²) θ̇² + ½ Σ q̇_k²; with Σ q_k² neglected against J₀ the mass
-matrix is the constant diag(m, m, J₀, 1, …, 1), gravity does no work on the modes, the
-elastic forces are −ω_k² q_k (strain energy ½ Σ ω_k² q_k²) and the stiffness-proportional
-damping −β ω_k² q̇_k. The neglected terms (docs/model.md, "Modal links"): Σ q_k² in the
-inertia, the centrifugal and Coriolis couplings of frame and modes, and the geometric
-stiffening by the axial load; the link is axially rigid.
+2005, ch. 5; Canavin & Likins, J. Spacecraft 14, 1977). So do the free–free axial modes of
+a uniform rod, χ_n(x̄) = √(2/(ρA L)) cos(nπξ/L), ω_n = (nπ/L) √(EA/ρA) (Timoshenko, Young &
+Weaver, Vibration Problems in Engineering, 4th ed., 1974, sect. 5.2), which are orthogonal
+to the bending modes. The kinetic energy is then
+T = ½ m |Ṙ|² + ½ (J₀ + Σ q_k²) θ̇² + ½ Σ q̇_k² + ½ Σ ṗ_n²; with Σ q_k² neglected against J₀
+the mass matrix is the constant diag(m, m, J₀, 1, …, 1), gravity does no work on the modes,
+the elastic forces are −ω_k² q_k (strain energy ½ Σ ω_k² q_k², axial modes alike) and the
+stiffness-proportional damping −β ω_k² q̇_k. The neglected terms (docs/model.md, "Modal
+links"): Σ q_k² in the inertia, the centrifugal and Coriolis couplings of frame and modes,
+and the geometric stiffening by the axial load; without axial modes the link is axially
+rigid.
 """
 
 import math
@@ -34,7 +41,10 @@ from sim.jit import kernel, kernel_inline
 
 BETA_L = (4.7300408, 7.8532046, 10.9956078, 14.1371655)
 """β_k L of the first free–free bending modes of a uniform Euler–Bernoulli beam."""
-MAX_MODES = len(BETA_L)
+MAX_AXIAL = 3
+"""Free–free axial modes a modal link may carry (`bodies.<name>.axial_modes`)."""
+MAX_MODES = len(BETA_L) + MAX_AXIAL
+"""Modal coordinates of a link at most: its bending modes, then its axial ones."""
 
 _QUADRATURE_POINTS = 64  # Gauss–Legendre points for the normalisation: exact to 1e-14 here
 
@@ -74,14 +84,28 @@ def frequencies(length: float, rho_a: float, ei: float, modes: int) -> np.ndarra
     return np.array([(BETA_L[k] / length) ** 2 * math.sqrt(ei / rho_a) for k in range(modes)])
 
 
+def axial_shapes(x_bar: float, length: float, rho_a: float, axial: int) -> np.ndarray:
+    """χ_n(x̄) = √(2/(ρA L)) cos(nπξ/L) (kg^-½), n = 1…axial, the mass-normalised free–free
+    axial modes of a uniform rod at body-frame x̄ (m, from the centre), ξ = x̄ + L/2."""
+    n = np.arange(1, axial + 1)
+    return math.sqrt(2.0 / (rho_a * length)) * np.cos(n * math.pi * (x_bar / length + 0.5))
+
+
+def axial_frequencies(length: float, rho_a: float, ea: float, axial: int) -> np.ndarray:
+    """Free–free axial angular frequencies ω_n = (nπ/L) √(EA/ρA) (rad/s), n = 1…axial."""
+    return np.arange(1, axial + 1) * math.pi / length * math.sqrt(ea / rho_a)
+
+
 def point_coefficients(
-    u: tuple[float, float], length: float, rho_a: float, modes: int
+    u: tuple[float, float], length: float, rho_a: float, modes: int, axial: int = 0
 ) -> np.ndarray:
     """(2, MAX_MODES) ∂(local displacement)/∂q_k of the point at body-frame u = (x̄, ȳ) (m):
-    row 0 −ȳ ψ_k′(x̄), row 1 ψ_k(x̄); zero beyond `modes`."""
+    for the `modes` bending modes row 0 −ȳ ψ_k′(x̄), row 1 ψ_k(x̄); for the `axial` axial modes
+    after them row 0 χ_n(x̄), row 1 0; zero beyond."""
     out = np.zeros((2, MAX_MODES))
     out[0, :modes] = -u[1] * mode_shapes(u[0], length, rho_a, modes, derivative=1)
     out[1, :modes] = mode_shapes(u[0], length, rho_a, modes)
+    out[0, modes : modes + axial] = axial_shapes(u[0], length, rho_a, axial)
     return out
 
 

@@ -46,12 +46,18 @@ def peaks_table(cases: list[str], runs: list[xr.Dataset], ideals: list[xr.Datase
     return pd.DataFrame(rows)
 
 
+def _modal_label(body: dict) -> str:
+    """A modal link's modes: "3" (bending only) or "3+2 axial"."""
+    axial = body.get("axial_modes", 0)
+    return f"{body['modes']}+{axial} axial" if axial else str(body["modes"])
+
+
 def _setting(case: str, run: xr.Dataset) -> dict:
     """What a run of the fidelity study was: integrator, tolerances, link model, clearances,
     duration and output rate, and what it cost (integrator wall time in s, real-time factor)."""
     scene = scene_of(run)
     elements = sorted({b["elements"] for b in scene["bodies"].values() if b["kind"] == "beam"})
-    modes = sorted({b["modes"] for b in scene["bodies"].values() if b["kind"] == "modal"})
+    modes = sorted({_modal_label(b) for b in scene["bodies"].values() if b["kind"] == "modal"})
     links = "beam " + ",".join(map(str, elements)) if elements else "rigid"
     if modes:
         links = "modal " + ",".join(map(str, modes)) + ("" if links == "rigid" else " " + links)

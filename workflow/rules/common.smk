@@ -83,8 +83,10 @@ def link_overrides():
     for body in model["flexible_bodies"]:
         out[f"bodies.{body}.kind"] = model["links"]
         if model["links"] == "modal":
-            if "modes" in model:  # else the scene schema's default (sim.scene, bodies.<name>.modes)
-                out[f"bodies.{body}.modes"] = model["modes"]
+            # else the scene schema's defaults (sim.scene, bodies.<name>.modes, .axial_modes)
+            for key in ("modes", "axial_modes"):
+                if key in model:
+                    out[f"bodies.{body}.{key}"] = model[key]
         else:
             out[f"bodies.{body}.elements"] = model["elements"]
     return out
