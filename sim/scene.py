@@ -167,8 +167,9 @@ SOLVER = {
     "baumgarte_alpha": _num(0.0, 1e4, "1/s"),
     "baumgarte_beta": _num(0.0, 1e4, "1/s"),
     "max_steps": Field("int", 1, 10**12),
-    # minimal: a rigid mechanism whose ideal joints form a tree integrates its joint angles
-    # (sim.model.tree; DOPRI5 only); absolute: always coordinates under multipliers
+    # minimal: a mechanism of rigid bodies and modal links whose ideal joints form a tree
+    # integrates its joint angles and modal amplitudes (sim.model.tree; DOPRI5 only);
+    # absolute: always coordinates under multipliers
     "coordinates": Field("str", choices=("minimal", "absolute"), required=False, default="minimal"),
 }
 

@@ -93,7 +93,8 @@ def build_system(scene: dict, *, ideal: bool = False, rigid: bool = False) -> tu
     """Compile `scene` (validated, defaults filled) into arrays with a `SystemBuilder`:
     bodies in the scene's order, then its joints, then the drive. ideal/rigid force
     every joint ideal / every link rigid. With `solver.coordinates: minimal` and DOPRI5, a
-    rigid mechanism whose ideal joints form a tree gets its hinges (sim.model.tree)."""
+    mechanism of rigid bodies and modal links whose ideal joints form a tree gets its hinges
+    (sim.model.tree)."""
     contact = scene["contact"]
     builder = SystemBuilder(
         scene["gravity"],

@@ -11,8 +11,9 @@ block diagonal, so the system is solved through the Schur complement
 S = Φ_q M⁻¹ Φ_qᵀ (small, symmetric positive definite when Φ_q has full row rank):
 S λ = Φ_q M⁻¹ Q − b, then q̈ = M⁻¹ (Q − Φ_qᵀ λ).
 
-A rigid mechanism whose ideal joints form a tree (`System.tree`, sim.model.tree) needs no
-multipliers: with q̇ = J ż and q̈ = J z̈ + a_b in the angles z of its undriven bodies,
+A mechanism of rigid bodies and modal links whose ideal joints form a tree (`System.tree`,
+sim.model.tree) needs no multipliers: with q̇ = J ż and q̈ = J z̈ + a_b in the angles z of its
+undriven bodies and the modal amplitudes of its modal links,
 
     (Jᵀ M J) z̈ = Jᵀ (Q − M a_b),        τ = J_dᵀ (M q̈ − Q)
 
@@ -42,7 +43,7 @@ from sim.model.system import (
     n_clearance_joints,
     n_gaps,
 )
-from sim.model.tree import tree_kinematics
+from sim.model.tree import tree_columns, tree_kinematics
 from sim.solve.linalg import cholesky_in_place, cholesky_solve_in_place
 from sim.solve.status import NONFINITE, OK, SINGULAR
 
@@ -95,12 +96,12 @@ class Work(NamedTuple):
     # Minimal coordinates (System.tree, sim.model.tree); zero-sized without a tree:
     tree_q: np.ndarray  # (n,) absolute q rebuilt from the angles
     tree_qd: np.ndarray  # (n,) absolute q̇
-    tree_jac: np.ndarray  # (n, hinges) J = ∂q̇/∂ż, the driven angle's column last
+    tree_jac: np.ndarray  # (n, columns) J = ∂q̇/∂ż, the driven angle's column last
     tree_bias: np.ndarray  # (n,) centripetal accelerations a_b
     tree_rot: np.ndarray  # (n, 2) (cos θ, sin θ) of each body, at its offset
-    tree_mass: np.ndarray  # (hinges − 1, hinges − 1) Jᵀ M J, then its Cholesky factor
-    tree_zdd: np.ndarray  # (hinges − 1,) Jᵀ (Q − M a_b), then z̈
-    tree_first: np.ndarray  # (hinges − 1,) zeros: Jᵀ M J is dense
+    tree_mass: np.ndarray  # (columns − 1, columns − 1) Jᵀ M J, then its Cholesky factor
+    tree_zdd: np.ndarray  # (columns − 1,) Jᵀ (Q − M a_b), then z̈
+    tree_first: np.ndarray  # (columns − 1,) zeros: Jᵀ M J is dense
 
 
 def state_size(system: System) -> int:
@@ -174,9 +175,9 @@ def make_work(system: System) -> Work:
         col_block[start:end] = b
     beam_size = 4 * (int(system.beam_nel.max()) + 1) if system.beam_nel.size else 0
     pairs, first, coord_rows, coord_nrows = constraint_sparsity(jac_cols, jac_ncols, col_block)
-    hinges = system.tree.shape[0]
-    free = max(hinges - 1, 0)
-    n_tree = n if hinges else 0
+    columns = tree_columns(system.tree)
+    free = max(columns - 1, 0)
+    n_tree = n if columns else 0
     return Work(
         phi=np.zeros(m),
         jac=np.zeros((m, n)),
@@ -217,7 +218,7 @@ def make_work(system: System) -> Work:
         coord_nrows=coord_nrows,
         tree_q=np.zeros(n_tree),
         tree_qd=np.zeros(n_tree),
-        tree_jac=np.zeros((n_tree, hinges)),
+        tree_jac=np.zeros((n_tree, columns)),
         tree_bias=np.zeros(n_tree),
         tree_rot=np.zeros((n_tree, 2)),
         tree_mass=np.zeros((free, free)),
@@ -434,12 +435,14 @@ def _finish_derivative(sys, work, qd, torque: float, drive_power: float, ydot) -
     return OK
 
 
-@kernel
+@kernel_inline
 def project_onto_tree(sys, work, t: float, y: np.ndarray) -> None:
     """Overwrite the absolute q and q̇ in y with those the tree's angles and rates give
     (and the driven angle with the drive's): the projection onto the constraint manifold
     at the end of every step, before its events are located, and at every start from a given
-    state. A no-op without a tree."""
+    state. A no-op without a tree. Inlined (sim.jit): once the tree carried modal links, LLVM
+    stopped inlining it into the step, and the call, with `System` and `Work` passed field by
+    field, made rigid runs 8 % slower."""
     if sys.tree.shape[0] == 0:
         return
     n = sys.n

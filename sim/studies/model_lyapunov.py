@@ -150,7 +150,7 @@ def linkage_lyapunov(
         d0 away in a fixed random direction of (q, q̇); both are integrated by the run's own
         compiled integrator (:class:`LinkagePropagator`), with their contact memory, and the
         separation is renormalised to d0 every ``interval_revolutions``. The perturbation
-        leaves the ideal constraints by d0. In minimal coordinates (a rigid tree mechanism,
+        leaves the ideal constraints by d0. In minimal coordinates (a tree mechanism,
         :mod:`sim.model.tree`) the first step's projection drops that component; in absolute
         coordinates Baumgarte stabilisation pulls it back at its rates (−α ± √(α² − β²)), so
         it fades within the transient unless the motion is more stable than the stabilisation

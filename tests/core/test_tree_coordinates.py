@@ -18,6 +18,9 @@ from sim.solve.status import OK
 from sim.studies.model_lyapunov import linkage_lyapunov
 
 FLAGSHIP = ["joints.A.clearance=0.5e-3", "joints.B.clearance=0.5e-3"]
+RODS = ("rod2", "rod3", "rod4")
+MODAL = tuple(f"bodies.{b}.kind=modal" for b in RODS)
+AXIAL = tuple(f"bodies.{b}.axial_modes=1" for b in RODS)
 
 
 def _scene(*overrides: str) -> dict:
@@ -45,8 +48,7 @@ def test_the_flagship_is_a_tree_of_five_hinges_with_the_drive_last():
     [
         ("joints.A.clearance=0", "joints.B.clearance=0"),  # every joint ideal: loops
         ("joints.A.clearance=0",),  # A ideal closes the loop O-A-D1-D2-C
-        ("bodies.rod2.kind=beam",),  # a beam is no rigid body
-        ("bodies.rod2.kind=modal",),
+        ("bodies.rod2.kind=beam",),  # a beam is neither a rigid body nor a modal link
         ("solver.method=generalized_alpha",),  # its Newton iteration is built on Φ_q
         ("solver.coordinates=absolute",),
     ],
@@ -56,9 +58,20 @@ def test_no_tree_where_it_does_not_apply(overrides):
     assert system.tree.size == 0
 
 
-def _contact_state() -> tuple[float, np.ndarray, np.ndarray]:
+def test_modal_links_add_their_amplitudes_before_the_driven_angle():
+    system, layout = build_system(_scene(*MODAL, *AXIAL))
+    tree = system.tree
+    assert tree.size == 5
+    # 4 undriven angles, then 2 amplitudes of each of the three rods, then the driven angle
+    assert sorted(h["modal_column"] for h in tree if h["child_modes"]) == [4, 6, 8]
+    assert {int(h["child_modes"]) for h in tree if h["child"] in system.md_off} == {2}
+    driven = [h for h in tree if h["child"] == layout.offset["crank"]]
+    assert driven[0]["column"] == 4 + 6
+
+
+def _contact_state(*links: str) -> tuple[float, np.ndarray, np.ndarray]:
     """A state of the multiplier form with both clearance joints in contact."""
-    integ = prepare(_scene("solver.coordinates=absolute", "simulation.revolutions=1"))
+    integ = prepare(_scene(*links, "solver.coordinates=absolute", "simulation.revolutions=1"))
     period = 0.4
     t = 0.0
     while t < period:
@@ -69,10 +82,11 @@ def _contact_state() -> tuple[float, np.ndarray, np.ndarray]:
     raise AssertionError("no state with both joints in contact")
 
 
-def test_tree_and_multiplier_forms_agree_on_the_manifold():
-    t, y, mem = _contact_state()
-    tree = prepare(_scene("simulation.revolutions=1"))
-    absolute = prepare(_scene("solver.coordinates=absolute", "simulation.revolutions=1"))
+@pytest.mark.parametrize("links", [(), MODAL, MODAL + AXIAL], ids=["rigid", "modal", "axial"])
+def test_tree_and_multiplier_forms_agree_on_the_manifold(links):
+    t, y, mem = _contact_state(*links)
+    tree = prepare(_scene(*links, "simulation.revolutions=1"))
+    absolute = prepare(_scene(*links, "solver.coordinates=absolute", "simulation.revolutions=1"))
     assert tree.system.tree.size == 5
     n = tree.system.n
     drift = y.copy()
@@ -95,23 +109,18 @@ def test_tree_and_multiplier_forms_agree_on_the_manifold():
     np.testing.assert_allclose(d_tree[2 * n :], d_abs[2 * n :], rtol=1e-9)
 
 
-def test_a_tree_run_keeps_its_constraints_and_closes_its_energy_audit(run):
+@pytest.mark.parametrize("links", [(), MODAL], ids=["rigid", "modal"])
+def test_a_tree_run_keeps_its_constraints_and_closes_its_energy_audit(run, links):
     # restitution 1 and no friction: the only loss is the integrator's. The multiplier
     # form's audit on the same case is ~3e-5 (test_energy); the bound 1e-3 is the default
     # fidelity's (README, "Default fidelity").
-    ds = run("sixbar", *FLAGSHIP, "contact.restitution=1.0", "contact.friction=0.0", revolutions=2)
+    elastic = ("contact.restitution=1.0", "contact.friction=0.0", *links)
+    ds = run("sixbar", *FLAGSHIP, *elastic, revolutions=2)
     assert ds.attrs["solver_contact_events"] > 50
     assert abs(ds.attrs["energy_error_relative"]) < 1e-3
     # each accepted step ends on the manifold: a sample inside a step is off it by the
     # continuous extension's error only, far below the Baumgarte drift of the multiplier form
-    absolute = run(
-        "sixbar",
-        *FLAGSHIP,
-        "contact.restitution=1.0",
-        "contact.friction=0.0",
-        "solver.coordinates=absolute",
-        revolutions=2,
-    )
+    absolute = run("sixbar", *FLAGSHIP, *elastic, "solver.coordinates=absolute", revolutions=2)
     tree_violation = float(ds["constraint_violation"].max())
     assert tree_violation < 1e-9
     assert tree_violation < 0.1 * float(absolute["constraint_violation"].max())
