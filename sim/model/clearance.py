@@ -30,7 +30,12 @@ import numpy as np
 
 from sim.jit import kernel, kernel_inline
 from sim.model.contact import friction_force, lankarani_nikravesh
-from sim.model.kinematics import apply_point_force, point_position, point_velocity
+from sim.model.kinematics import (
+    apply_point_force_rotated,
+    point_position_rotated,
+    point_rotation,
+    point_velocity_rotated,
+)
 from sim.model.system import (
     CORNERS_PER_SLIDER,
     GAPS_PER_SLIDER,
@@ -51,16 +56,32 @@ CORNER_SY = (1.0, 1.0, -1.0, -1.0)
 @kernel_inline
 def eccentricity(sys, j: int, q: np.ndarray) -> tuple[float, float]:
     """Eccentricity vector e = r_J − r_B (m) of revolute clearance j."""
-    bx, by = point_position(sys, sys.rj_pts[j, 0], q)
-    jx, jy = point_position(sys, sys.rj_pts[j, 1], q)
+    cb, sb = point_rotation(sys, sys.rj_pts[j, 0], q)
+    cj, sj = point_rotation(sys, sys.rj_pts[j, 1], q)
+    return _eccentricity(sys, j, q, cb, sb, cj, sj)
+
+
+@kernel_inline
+def _eccentricity(sys, j: int, q: np.ndarray, cb: float, sb: float, cj: float, sj: float):
+    """`eccentricity` with the bearing's and the journal's (cos θ, sin θ) given."""
+    bx, by = point_position_rotated(sys, sys.rj_pts[j, 0], q, cb, sb)
+    jx, jy = point_position_rotated(sys, sys.rj_pts[j, 1], q, cj, sj)
     return jx - bx, jy - by
 
 
 @kernel_inline
 def eccentricity_rate(sys, j: int, q: np.ndarray, qd: np.ndarray) -> tuple[float, float]:
     """ė (m/s) of revolute clearance j."""
-    bx, by = point_velocity(sys, sys.rj_pts[j, 0], q, qd, 0.0, 0.0)
-    jx, jy = point_velocity(sys, sys.rj_pts[j, 1], q, qd, 0.0, 0.0)
+    cb, sb = point_rotation(sys, sys.rj_pts[j, 0], q)
+    cj, sj = point_rotation(sys, sys.rj_pts[j, 1], q)
+    return _eccentricity_rate(sys, j, q, qd, cb, sb, cj, sj)
+
+
+@kernel_inline
+def _eccentricity_rate(sys, j: int, q, qd, cb: float, sb: float, cj: float, sj: float):
+    """`eccentricity_rate` with the bearing's and the journal's (cos θ, sin θ) given."""
+    bx, by = point_velocity_rotated(sys, sys.rj_pts[j, 0], q, qd, 0.0, 0.0, cb, sb)
+    jx, jy = point_velocity_rotated(sys, sys.rj_pts[j, 1], q, qd, 0.0, 0.0, cj, sj)
     return jx - bx, jy - by
 
 
@@ -200,10 +221,13 @@ def revolute_clearance_forces(
     for j in range(sys.rj_pts.shape[0]):
         pb = sys.rj_pts[j, 0]
         pj = sys.rj_pts[j, 1]
-        ex, ey = eccentricity(sys, j, q)
+        # each body's rotation once for all the points' kinematics below
+        cb, sb = point_rotation(sys, pb, q)
+        cj, sj = point_rotation(sys, pj, q)
+        ex, ey = _eccentricity(sys, j, q, cb, sb, cj, sj)
         e = np.hypot(ex, ey)
         delta = e - sys.rj[j].clearance
-        vx, vy = eccentricity_rate(sys, j, q, qd)
+        vx, vy = _eccentricity_rate(sys, j, q, qd, cb, sb, cj, sj)
         rate = (ex * vx + ey * vy) / e if e > 0.0 else 0.0
         jout[j, OUT_PENETRATION] = max(delta, 0.0)
         jout[j, OUT_RATE] = rate
@@ -226,14 +250,14 @@ def revolute_clearance_forces(
         ny = ey / e
         rj = sys.rj[j].journal_radius
         rb = sys.rj[j].bearing_radius
-        vjx, vjy = point_velocity(sys, pj, q, qd, rj * nx, rj * ny)
-        vbx, vby = point_velocity(sys, pb, q, qd, rb * nx, rb * ny)
+        vjx, vjy = point_velocity_rotated(sys, pj, q, qd, rj * nx, rj * ny, cj, sj)
+        vbx, vby = point_velocity_rotated(sys, pb, q, qd, rb * nx, rb * ny, cb, sb)
         slip = -ny * (vjx - vbx) + nx * (vjy - vby)
         ft = friction_force(fn, slip, ce.friction, ce.v0, ce.v1)
         fx = -fn * nx - ft * ny
         fy = -fn * ny + ft * nx
-        apply_point_force(sys, pj, q, fx, fy, rj * nx, rj * ny, gen)
-        apply_point_force(sys, pb, q, -fx, -fy, rb * nx, rb * ny, gen)
+        apply_point_force_rotated(sys, pj, q, fx, fy, rj * nx, rj * ny, gen, cj, sj)
+        apply_point_force_rotated(sys, pb, q, -fx, -fy, rb * nx, rb * ny, gen, cb, sb)
         p_diss += (fn - fel) * rate - ft * slip
         u_contact += fel * delta / (ce.exponent + 1.0)
         jout[j, OUT_NORMAL_FORCE] = fn

@@ -17,6 +17,11 @@ left out of a contact point's lever (docs/model.md, "Modal links").
 `offset` arguments add a global vector to the body-frame point (a contact point
 at a distance from the joint centre); for beam nodes the offset is ignored
 because a node has no rotational coordinate to carry its moment.
+
+The `*_rotated` forms take the owning body's (cos θ, sin θ) from `point_rotation`, so that
+a caller that needs one point's position, velocity and force computes them once: a clearance
+joint's contact force took them up to eight times an evaluation, and cos and sin take about a
+fifth of the rigid core's integration time (perf, 2026-11-26; docs/performance.md).
 """
 
 import numpy as np
@@ -46,23 +51,39 @@ def _local(sys, k: int, q: np.ndarray) -> tuple[float, float]:
 
 
 @kernel_inline
-def _modal_velocity(sys, k: int, q: np.ndarray, qd: np.ndarray) -> tuple[float, float]:
-    """A Ψ q̇_m (m/s): the velocity of point k relative to its link's frame, zero
-    for points of other bodies."""
+def point_rotation(sys, k: int, q: np.ndarray) -> tuple[float, float]:
+    """(cos θ, sin θ) of the body that owns point k; (1, 0) for ground points and beam nodes,
+    which have no angle."""
+    kind = sys.pt_kind[k]
+    if kind == POINT_GROUND or kind == POINT_NODE:
+        return 1.0, 0.0
+    theta = q[sys.pt_off[k] + 2]
+    return np.cos(theta), np.sin(theta)
+
+
+@kernel_inline
+def _modal_velocity(sys, k: int, qd: np.ndarray, c: float, s: float) -> tuple[float, float]:
+    """A Ψ q̇_m (m/s), A = A(θ) given by (c, s): the velocity of point k relative to its
+    link's frame, zero for points of other bodies."""
     vx = 0.0
     vy = 0.0
     o = sys.pt_off[k] + 3
     for m in range(sys.pt_modes[k]):
         vx += sys.pt_modal[k, 0, m] * qd[o + m]
         vy += sys.pt_modal[k, 1, m] * qd[o + m]
-    if sys.pt_modes[k] == 0:
-        return vx, vy
-    return rotate(q[sys.pt_off[k] + 2], vx, vy)
+    return c * vx - s * vy, s * vx + c * vy
 
 
 @kernel_inline
 def point_position(sys, k: int, q: np.ndarray) -> tuple[float, float]:
     """Global position (m) of point k."""
+    c, s = point_rotation(sys, k, q)
+    return point_position_rotated(sys, k, q, c, s)
+
+
+@kernel_inline
+def point_position_rotated(sys, k: int, q: np.ndarray, c: float, s: float) -> tuple[float, float]:
+    """`point_position` with its body's (cos θ, sin θ) = (c, s) given."""
     kind = sys.pt_kind[k]
     if kind == POINT_GROUND:
         return sys.pt_u[k, 0], sys.pt_u[k, 1]
@@ -70,8 +91,7 @@ def point_position(sys, k: int, q: np.ndarray) -> tuple[float, float]:
     if kind == POINT_NODE:
         return q[o], q[o + 1]
     ux, uy = _local(sys, k, q)
-    ax, ay = rotate(q[o + 2], ux, uy)
-    return q[o] + ax, q[o + 1] + ay
+    return q[o] + c * ux - s * uy, q[o + 1] + s * ux + c * uy
 
 
 @kernel_inline
@@ -79,6 +99,15 @@ def point_velocity(
     sys, k: int, q: np.ndarray, qd: np.ndarray, ox: float, oy: float
 ) -> tuple[float, float]:
     """Global velocity (m/s) of the material point at point k plus global offset (ox, oy)."""
+    c, s = point_rotation(sys, k, q)
+    return point_velocity_rotated(sys, k, q, qd, ox, oy, c, s)
+
+
+@kernel_inline
+def point_velocity_rotated(
+    sys, k: int, q: np.ndarray, qd: np.ndarray, ox: float, oy: float, c: float, s: float
+) -> tuple[float, float]:
+    """`point_velocity` with its body's (cos θ, sin θ) = (c, s) given."""
     kind = sys.pt_kind[k]
     if kind == POINT_GROUND:
         return 0.0, 0.0
@@ -86,12 +115,13 @@ def point_velocity(
     if kind == POINT_NODE:
         return qd[o], qd[o + 1]
     ux, uy = _local(sys, k, q)
-    ax, ay = rotate(q[o + 2], ux, uy)
+    ax = c * ux - s * uy
+    ay = s * ux + c * uy
     w = qd[o + 2]
     vx = qd[o] - w * (ay + oy)
     vy = qd[o + 1] + w * (ax + ox)
     if kind == POINT_MODAL:
-        mx, my = _modal_velocity(sys, k, q, qd)
+        mx, my = _modal_velocity(sys, k, qd, c, s)
         vx += mx
         vy += my
     return vx, vy
@@ -110,7 +140,7 @@ def point_quadratic_acceleration(sys, k: int, q: np.ndarray, qd: np.ndarray) -> 
     w = qd[o + 2]
     w2 = w * w
     if kind == POINT_MODAL:
-        mx, my = _modal_velocity(sys, k, q, qd)
+        mx, my = _modal_velocity(sys, k, qd, np.cos(q[o + 2]), np.sin(q[o + 2]))
         return -w2 * ax - 2.0 * w * my, -w2 * ay + 2.0 * w * mx
     return -w2 * ax, -w2 * ay
 
@@ -142,6 +172,24 @@ def apply_point_force(
 ) -> None:
     """Add the generalized force of a global force (fx, fy) (N) acting at point k
     plus global offset (ox, oy) to `gen`: Q += (∂r/∂q)ᵀ f."""
+    c, s = point_rotation(sys, k, q)
+    apply_point_force_rotated(sys, k, q, fx, fy, ox, oy, gen, c, s)
+
+
+@kernel_inline
+def apply_point_force_rotated(
+    sys,
+    k: int,
+    q: np.ndarray,
+    fx: float,
+    fy: float,
+    ox: float,
+    oy: float,
+    gen: np.ndarray,
+    c: float,
+    s: float,
+) -> None:
+    """`apply_point_force` with its body's (cos θ, sin θ) = (c, s) given."""
     kind = sys.pt_kind[k]
     if kind == POINT_GROUND:
         return
@@ -151,8 +199,10 @@ def apply_point_force(
     if kind == POINT_NODE:
         return
     ux, uy = _local(sys, k, q)
-    ax, ay = rotate(q[o + 2], ux, uy)
+    ax = c * ux - s * uy
+    ay = s * ux + c * uy
     gen[o + 2] += (ax + ox) * fy - (ay + oy) * fx
     for m in range(sys.pt_modes[k]):
-        px, py = rotate(q[o + 2], sys.pt_modal[k, 0, m], sys.pt_modal[k, 1, m])
+        px = c * sys.pt_modal[k, 0, m] - s * sys.pt_modal[k, 1, m]
+        py = s * sys.pt_modal[k, 0, m] + c * sys.pt_modal[k, 1, m]
         gen[o + 3 + m] += px * fx + py * fy
