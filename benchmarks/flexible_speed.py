@@ -65,7 +65,7 @@ def _time_rhs(system, work, mem, y, count):
 @numba.njit
 def _time_forces(system, work, mem, q, v, count):
     for _ in range(count):
-        dae.generalized_forces(system, work, 0.0, q, v, mem)
+        dae.generalized_forces(system, work, 0.0, q, v, mem, dae.no_rotations(work))
         constraint_terms(system, 0.0, q, v, work.phi, work.jac, work.gamma, work.nu)
 
 

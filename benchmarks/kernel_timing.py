@@ -26,7 +26,7 @@ from sim.model.clearance import revolute_clearance_forces, translational_clearan
 from sim.model.constraints import constraint_terms
 from sim.run import prepare
 from sim.scene import load_scene
-from sim.solve.dae import generalized_forces, project_onto_tree, rhs
+from sim.solve.dae import generalized_forces, no_rotations, project_onto_tree, rhs
 from sim.solve.linalg import cholesky_in_place, cholesky_solve_in_place
 from sim.solve.status import OK
 
@@ -44,21 +44,25 @@ def _rhs_loop(sys, work, mem, t, y, ydot, calls):
 def _forces_loop(sys, work, mem, t, y, calls):
     n = sys.n
     for _ in range(calls):
-        generalized_forces(sys, work, t, y[:n], y[n : 2 * n], mem)
+        generalized_forces(sys, work, t, y[:n], y[n : 2 * n], mem, no_rotations(work))
 
 
 @kernel
 def _revolute_loop(sys, work, mem, y, calls):
     n = sys.n
     for _ in range(calls):
-        revolute_clearance_forces(sys, y[:n], y[n : 2 * n], mem, work.gen, work.jout)
+        revolute_clearance_forces(
+            sys, y[:n], y[n : 2 * n], mem, work.gen, work.jout, no_rotations(work)
+        )
 
 
 @kernel
 def _translational_loop(sys, work, mem, y, calls):
     n = sys.n
     for _ in range(calls):
-        translational_clearance_forces(sys, y[:n], y[n : 2 * n], mem, work.gen, work.jout)
+        translational_clearance_forces(
+            sys, y[:n], y[n : 2 * n], mem, work.gen, work.jout, no_rotations(work)
+        )
 
 
 @kernel

@@ -6,6 +6,7 @@ output file says what made it (CF conventions 1.8).
 """
 
 import json
+import math
 import os
 import threading
 from pathlib import Path
@@ -41,7 +42,7 @@ def decode_rows(rows: np.ndarray, bodies: list[str], joints: list[str]) -> dict[
     (samples, ...)."""
     out = {}
     for name, (first, shape) in column_layout(len(bodies), len(joints)).items():
-        width = int(np.prod(shape, dtype=int))
+        width = math.prod(shape)
         out[name] = rows[:, first : first + width].reshape((rows.shape[0], *shape))
     return out
 
@@ -97,7 +98,7 @@ def _peak_blocks(vector: np.ndarray, layout: dict) -> list[np.ndarray]:
     """The PEAK quantities' blocks of a peak vector (or of rows of them: leading axes kept)."""
     lead = vector.shape[:-1]
     return [
-        vector[..., first : first + int(np.prod(block, dtype=int))].reshape((*lead, *block))
+        vector[..., first : first + math.prod(block)].reshape((*lead, *block))
         for first, block in layout.values()
     ]
 
@@ -156,17 +157,14 @@ def build_dataset(
         "joint": joints,
         "revolution": np.arange(section_rows.shape[0]),
     }
-    ds = xr.Dataset(coords=coords)
-    for q in recorded(SAMPLE):
-        ds[q.name] = (q.dims, data[q.name])
-    for q in recorded(SECTION):
-        ds[q.name] = (q.dims, sections[q.source])
+    variables = {q.name: (q.dims, data[q.name]) for q in recorded(SAMPLE)}
+    variables.update({q.name: (q.dims, sections[q.source]) for q in recorded(SECTION)})
     # the largest |value| over the accepted steps (integrator) and the samples
     layout = peak_layout(len(bodies), len(joints))
     for q, steps in zip(recorded(PEAK), _peak_blocks(peaks, layout), strict=True):
         sampled = np.abs(data[q.source]).max(axis=0, initial=0.0)
-        ds[q.name] = (q.dims, np.maximum(steps, sampled))
-    ds["energy_error"] = energy_balance(ds)  # dims ("time",), as sim.quantities declares
+        variables[q.name] = (q.dims, np.maximum(steps, sampled))
+    variables["energy_error"] = (BY_NAME["energy_error"].dims, energy_balance(data))
     if rev_peaks is not None and rev_events is not None:
         per_revolution = _revolution_peaks(
             rev_peaks,
@@ -177,8 +175,10 @@ def build_dataset(
             float(provenance["crank_period"]),
             layout,
         )
-        for name, values in per_revolution.items():
-            ds[name] = (BY_NAME[name].dims, values)
+        variables.update({name: (BY_NAME[name].dims, v) for name, v in per_revolution.items()})
+    # one construction: a Dataset grown a variable at a time aligns its indexes at every
+    # step, which took 8 % of a 20-revolution rigid run (2026-11-26)
+    ds = xr.Dataset(variables, coords=coords)
     annotate(ds)
     ds.attrs.update(
         Conventions="CF-1.8",
@@ -188,7 +188,7 @@ def build_dataset(
         scene=json.dumps(scene),
         assumptions=json.dumps(scene["assumptions"]),
         sim_version=__version__,
-        energy_error_relative=energy_error_relative(ds),
+        energy_error_relative=energy_error_relative(data),
         **provenance,
     )
     return ds

@@ -279,7 +279,9 @@ class SystemBuilder:
         guide through guide[:2] at angle guide[2] of width `gap_width`; face stiffness
         (N/m) and corner Hertz stiffness (N/m^1.5) (sim.model.clearance)."""
         o = self.body(slider, f"joints.{owner}").offset
-        self._tj.append((owner, o, (*guide, length, width, gap_width, k_face, k_corner)))
+        px, py, angle = guide
+        frame = (px, py, angle, math.cos(angle), math.sin(angle))
+        self._tj.append((owner, o, (*frame, length, width, gap_width, k_face, k_corner)))
 
     def add_drive(self, body: str, initial_angle: float, omega: float) -> None:
         """Prescribe the angle of rigid `body`: θ = initial_angle + omega t (rad, rad/s)."""

@@ -32,6 +32,8 @@ from sim.jit import kernel, kernel_inline
 from sim.model.contact import friction_force, lankarani_nikravesh
 from sim.model.kinematics import (
     apply_point_force_rotated,
+    body_rotation,
+    frame_rotation,
     point_position_rotated,
     point_rotation,
     point_velocity_rotated,
@@ -88,12 +90,12 @@ def _eccentricity_rate(sys, j: int, q, qd, cb: float, sb: float, cj: float, sj: 
 @kernel
 def guide_frame(sys, j: int) -> tuple[float, float, float, float]:
     """Tangent and normal (t_x, t_y, n_x, n_y) of the guide of translational clearance j."""
-    c = np.cos(sys.tj[j].angle)
-    s = np.sin(sys.tj[j].angle)
+    c = sys.tj[j].cos_angle
+    s = sys.tj[j].sin_angle
     return c, s, -s, c
 
 
-@kernel
+@kernel_inline
 def slider_point_velocity(sys, j: int, qd: np.ndarray, ax: float, ay: float) -> tuple[float, float]:
     """Velocity (m/s) of the slider's material point at offset (ax, ay) from its centre."""
     o = sys.tj_off[j]
@@ -111,21 +113,27 @@ def slider_pose(sys, j: int, q: np.ndarray) -> tuple[float, float, float, float]
 
 
 @kernel_inline
-def corner_gap(
-    sys, j: int, i: int, side: float, q, qd, c: float, s: float, nx: float, ny: float
-) -> tuple[float, float, float, float]:
-    """Penetration δ (m), its rate (m/s) and the corner's offset (a_x, a_y) from the
-    slider centre, for corner i of slider j against wall `side`, from its pose."""
+def corner_depth(
+    sys, j: int, i: int, side: float, q, c: float, s: float, nx: float, ny: float
+) -> tuple[float, float, float]:
+    """Penetration δ (m) and the corner's offset (a_x, a_y) from the slider centre, for
+    corner i of slider j against wall `side`, from its pose (`slider_pose`)."""
     o = sys.tj_off[j]
     ux = 0.5 * CORNER_SX[i] * sys.tj[j].length
     uy = 0.5 * CORNER_SY[i] * sys.tj[j].width
     ax = c * ux - s * uy
     ay = s * ux + c * uy
-    w = qd[o + 2]
-    vx = qd[o] - w * ay
-    vy = qd[o + 1] + w * ax
     lateral = (q[o] + ax - sys.tj[j].px) * nx + (q[o + 1] + ay - sys.tj[j].py) * ny
-    delta = side * lateral - 0.5 * sys.tj[j].gap_width
+    return side * lateral - 0.5 * sys.tj[j].gap_width, ax, ay
+
+
+@kernel_inline
+def corner_gap(
+    sys, j: int, i: int, side: float, q, qd, c: float, s: float, nx: float, ny: float
+) -> tuple[float, float, float, float]:
+    """`corner_depth` and the penetration's rate (m/s): (δ, δ̇, a_x, a_y)."""
+    delta, ax, ay = corner_depth(sys, j, i, side, q, c, s, nx, ny)
+    vx, vy = slider_point_velocity(sys, j, qd, ax, ay)
     return delta, side * (vx * nx + vy * ny), ax, ay
 
 
@@ -146,6 +154,23 @@ def gap(sys, g: int, q: np.ndarray, qd: np.ndarray) -> tuple[float, float]:
         sys, j, (k % GAPS_PER_SLIDER) // 2, 1.0 if k % 2 == 0 else -1.0, q, qd, c, s, nx, ny
     )
     return delta, rate
+
+
+@kernel_inline
+def gap_depths(sys, q: np.ndarray, out: np.ndarray) -> None:
+    """δ (m) of every gap at q into `out`: `gap`'s penetrations without their rates, each
+    joint's trigonometry computed once (the scan of every gap at each step's end)."""
+    nr = sys.rj_pts.shape[0]
+    for j in range(nr):
+        ex, ey = eccentricity(sys, j, q)
+        out[j] = np.hypot(ex, ey) - sys.rj[j].clearance
+    for j in range(sys.tj_off.shape[0]):
+        c, s, nx, ny = slider_pose(sys, j, q)
+        for i in range(CORNERS_PER_SLIDER):
+            for w in range(2):
+                side = 1.0 if w == 0 else -1.0
+                delta, _, _ = corner_depth(sys, j, i, side, q, c, s, nx, ny)
+                out[nr + GAPS_PER_SLIDER * j + 2 * i + w] = delta
 
 
 @kernel
@@ -211,10 +236,17 @@ def _onset_rate(mem: np.ndarray, g: int, rate: float) -> float:
 
 @kernel_inline
 def revolute_clearance_forces(
-    sys, q: np.ndarray, qd: np.ndarray, mem: np.ndarray, gen: np.ndarray, jout: np.ndarray
+    sys,
+    q: np.ndarray,
+    qd: np.ndarray,
+    mem: np.ndarray,
+    gen: np.ndarray,
+    jout: np.ndarray,
+    rot: np.ndarray,
 ) -> tuple[float, float]:
     """Add the contact forces of every revolute clearance to `gen`; write the
-    per-joint outputs; return (dissipated power W, stored contact energy J)."""
+    per-joint outputs; return (dissipated power W, stored contact energy J). The bodies'
+    rotations are read from `rot` when it is given (sim.model.kinematics.frame_rotation)."""
     ce = sys.contact
     p_diss = 0.0
     u_contact = 0.0
@@ -222,8 +254,8 @@ def revolute_clearance_forces(
         pb = sys.rj_pts[j, 0]
         pj = sys.rj_pts[j, 1]
         # each body's rotation once for all the points' kinematics below
-        cb, sb = point_rotation(sys, pb, q)
-        cj, sj = point_rotation(sys, pj, q)
+        cb, sb = body_rotation(sys, pb, q, rot)
+        cj, sj = body_rotation(sys, pj, q, rot)
         ex, ey = _eccentricity(sys, j, q, cb, sb, cj, sj)
         e = np.hypot(ex, ey)
         delta = e - sys.rj[j].clearance
@@ -296,7 +328,7 @@ def _slider_force(
 
 
 @kernel
-def _winkler_edge(sys, j, w, q, qd, mem, gen):
+def _winkler_edge(sys, j, w, q, qd, mem, gen, c, s, nx, ny):
     """The long edge of slider j that faces wall w, pressed into an elastic
     foundation of stiffness k' = K_face / L per unit length (Winkler).
 
@@ -306,13 +338,12 @@ def _winkler_edge(sys, j, w, q, qd, mem, gen):
     and derives from U = k' ∫ δ² / 2 ds. Both corners in, this is the paper's face
     law; one corner in, its wedge limit, continuous with it. Hysteresis damping
     as Lankarani–Nikravesh, with the rate at the force's point and the onset
-    rate of the edge's first corner.
+    rate of the edge's first corner. (c, s, n_x, n_y): the slider's pose (`slider_pose`).
 
     Returns (normal force N, friction N, dissipated power W, elastic energy J,
     deepest penetration m)."""
     nr = sys.rj_pts.shape[0]
     base = nr + GAPS_PER_SLIDER * j
-    c, s, nx, ny = slider_pose(sys, j, q)
     # Which long edge faces wall w: the one whose outward normal (body +y for
     # corners 0, 1, that is (−sin θ, cos θ)) points along side·n_g.
     side = 1.0 if w == 0 else -1.0
@@ -357,10 +388,17 @@ def _winkler_edge(sys, j, w, q, qd, mem, gen):
 
 @kernel_inline
 def translational_clearance_forces(
-    sys, q: np.ndarray, qd: np.ndarray, mem: np.ndarray, gen: np.ndarray, jout: np.ndarray
+    sys,
+    q: np.ndarray,
+    qd: np.ndarray,
+    mem: np.ndarray,
+    gen: np.ndarray,
+    jout: np.ndarray,
+    rot: np.ndarray,
 ) -> tuple[float, float]:
     """Add the contact forces of every translational clearance to `gen`; write the
-    per-joint outputs; return (dissipated power W, stored contact energy J).
+    per-joint outputs; return (dissipated power W, stored contact energy J). The sliders'
+    rotations are read from `rot` when it is given (sim.model.kinematics.frame_rotation).
 
     The face law is an elastic (Winkler) foundation along the edge: pressure
     k' δ(s) with k' = K_face / L gives the total force K_face δ̄ at the centroid
@@ -377,11 +415,12 @@ def translational_clearance_forces(
         total_ft = 0.0
         deepest = 0.0
         state = 0.0
-        c, s, nx, ny = slider_pose(sys, j, q)
+        c, s = frame_rotation(q, sys.tj_off[j], rot)
+        _, _, nx, ny = guide_frame(sys, j)
         for w in range(2):
             side = 1.0 if w == 0 else -1.0
             if ce.slider_law == SLIDER_LAW_WINKLER:
-                fn, ft, pd, ue, depth = _winkler_edge(sys, j, w, q, qd, mem, gen)
+                fn, ft, pd, ue, depth = _winkler_edge(sys, j, w, q, qd, mem, gen, c, s, nx, ny)
                 if fn > 0.0 or depth > 0.0:
                     state = max(state, 2.0 if depth > 0.0 and fn > 0.0 else 1.0)
                 p_diss += pd
@@ -438,6 +477,5 @@ def translational_clearance_forces(
         jout[row, OUT_FRICTION_FORCE] = total_ft
         jout[row, OUT_STATE] = state
         o = sys.tj_off[j]
-        _, _, nx, ny = guide_frame(sys, j)
         jout[row, OUT_RATE] = qd[o] * nx + qd[o + 1] * ny
     return p_diss, u_contact

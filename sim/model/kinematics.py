@@ -18,8 +18,9 @@ left out of a contact point's lever (docs/model.md, "Modal links").
 at a distance from the joint centre); for beam nodes the offset is ignored
 because a node has no rotational coordinate to carry its moment.
 
-The `*_rotated` forms take the owning body's (cos θ, sin θ) from `point_rotation`, so that
-a caller that needs one point's position, velocity and force computes them once: a clearance
+The `*_rotated` forms take the owning body's (cos θ, sin θ) from `point_rotation`, or from
+`body_rotation` where the tree of minimal coordinates has computed them already, so that a
+caller that needs one point's position, velocity and force computes them once: a clearance
 joint's contact force took them up to eight times an evaluation, and cos and sin take about a
 fifth of the rigid core's integration time (perf, 2026-11-26; docs/performance.md).
 """
@@ -59,6 +60,25 @@ def point_rotation(sys, k: int, q: np.ndarray) -> tuple[float, float]:
         return 1.0, 0.0
     theta = q[sys.pt_off[k] + 2]
     return np.cos(theta), np.sin(theta)
+
+
+@kernel_inline
+def frame_rotation(q: np.ndarray, o: int, rot: np.ndarray) -> tuple[float, float]:
+    """(cos θ, sin θ) of the rigid body or modal link at offset o: read from `rot`, each
+    body's at its offset, as the tree of minimal coordinates keeps them at every evaluation
+    (sim.model.tree), or computed from q when `rot` is empty (absolute coordinates)."""
+    if rot.shape[0] > 0:
+        return rot[o, 0], rot[o, 1]
+    return np.cos(q[o + 2]), np.sin(q[o + 2])
+
+
+@kernel_inline
+def body_rotation(sys, k: int, q: np.ndarray, rot: np.ndarray) -> tuple[float, float]:
+    """`point_rotation` through `frame_rotation`: read from `rot` when it is given."""
+    kind = sys.pt_kind[k]
+    if kind == POINT_GROUND or kind == POINT_NODE:
+        return 1.0, 0.0
+    return frame_rotation(q, sys.pt_off[k], rot)
 
 
 @kernel_inline

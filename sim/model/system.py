@@ -79,6 +79,9 @@ TRANSLATIONAL_CLEARANCE = np.dtype(
         ("px", np.float64),  # a point of the guide's centre line, m
         ("py", np.float64),
         ("angle", np.float64),  # direction of the guide, rad
+        # its cos and sin, once: every evaluation reads the guide's frame (guide_frame)
+        ("cos_angle", np.float64),
+        ("sin_angle", np.float64),
         ("length", np.float64),  # slider length along the guide, m
         ("width", np.float64),  # slider width across it, m
         ("gap_width", np.float64),  # guide width, slider width plus twice the clearance, m

@@ -74,7 +74,7 @@ class Work(NamedTuple):
     ynew: np.ndarray  # (ny,)
     yint: np.ndarray  # (ny,) interpolated state of an output sample
     dense: np.ndarray  # (5, ny) dense-output coefficients of the last step
-    gaps: np.ndarray  # (ngaps,)
+    gaps: np.ndarray  # (ngaps,) every gap's δ at the end of a step (stepping._first_event)
     jac_cols: np.ndarray  # (m, k) the columns where each row of Φ_q can be nonzero
     jac_ncols: np.ndarray  # (m,) how many
     col_block: np.ndarray  # (n,) the mass block of each coordinate
@@ -241,14 +241,24 @@ def block_times(sys, matrix: np.ndarray, x: np.ndarray, out: np.ndarray) -> None
 
 
 @kernel_inline
-def generalized_forces(sys, work, t: float, q: np.ndarray, qd: np.ndarray, mem: np.ndarray) -> None:
+def no_rotations(work) -> np.ndarray:
+    """An empty table of rotations: the contact forces compute each body's (cos θ, sin θ)
+    from q (sim.model.kinematics.frame_rotation). A view, so nothing is allocated."""
+    return work.tree_rot[:0]
+
+
+@kernel_inline
+def generalized_forces(
+    sys, work, t: float, q: np.ndarray, qd: np.ndarray, mem: np.ndarray, rot: np.ndarray
+) -> None:
     """Q = gravity + contact − elastic − damping forces into work.gen; the
-    dissipated power and stored energies into work.scalars."""
+    dissipated power and stored energies into work.scalars. rot: the bodies' (cos θ, sin θ)
+    at q when the tree has them (work.tree_rot), else empty (`no_rotations`)."""
     gen = work.gen
     for i in range(sys.n):
         gen[i] = sys.gravity_force[i]
-    pr, ur = revolute_clearance_forces(sys, q, qd, mem, gen, work.jout)
-    pt, ut = translational_clearance_forces(sys, q, qd, mem, gen, work.jout)
+    pr, ur = revolute_clearance_forces(sys, q, qd, mem, gen, work.jout, rot)
+    pt, ut = translational_clearance_forces(sys, q, qd, mem, gen, work.jout, rot)
     pb, us = beam_forces(sys, q, qd, gen, work.scratch)
     work.scalars[SC_DISSIPATED_POWER] = pr + pt + pb
     work.scalars[SC_CONTACT_ENERGY] = ur + ut
@@ -261,8 +271,8 @@ def contact_forces(sys, work, q: np.ndarray, qd: np.ndarray, mem: np.ndarray, ou
     per-joint outputs discarded; returns the power their damping and friction
     dissipate (W). Leaves the evaluation that work holds intact."""
     out[:] = 0.0
-    pr, _ = revolute_clearance_forces(sys, q, qd, mem, out, work.fd_jout)
-    pt, _ = translational_clearance_forces(sys, q, qd, mem, out, work.fd_jout)
+    pr, _ = revolute_clearance_forces(sys, q, qd, mem, out, work.fd_jout, no_rotations(work))
+    pt, _ = translational_clearance_forces(sys, q, qd, mem, out, work.fd_jout, no_rotations(work))
     return pr + pt
 
 
@@ -284,7 +294,7 @@ def rhs(sys, work, mem: np.ndarray, t: float, y: np.ndarray, ydot: np.ndarray) -
     n = sys.n
     q = y[:n]
     qd = y[n : 2 * n]
-    generalized_forces(sys, work, t, q, qd, mem)
+    generalized_forces(sys, work, t, q, qd, mem, no_rotations(work))
     if sys.m > 0:
         constraint_terms(sys, t, q, qd, work.phi, work.jac, work.gamma, work.nu)
     return accelerations(sys, work, qd, ydot)
@@ -383,7 +393,7 @@ def tree_accelerations(
     jac = work.tree_jac
     bias = work.tree_bias
     tree_kinematics(sys, t, y, q, qd, jac, bias, work.tree_rot)
-    generalized_forces(sys, work, t, q, qd, mem)
+    generalized_forces(sys, work, t, q, qd, mem, work.tree_rot)
     gen = work.gen
     mz = work.tree_mass
     zdd = work.tree_zdd
@@ -439,16 +449,26 @@ def _finish_derivative(sys, work, qd, torque: float, drive_power: float, ydot) -
 def project_onto_tree(sys, work, t: float, y: np.ndarray) -> None:
     """Overwrite the absolute q and q̇ in y with those the tree's angles and rates give
     (and the driven angle with the drive's): the projection onto the constraint manifold
-    at the end of every step, before its events are located, and at every start from a given
-    state. A no-op without a tree. Inlined (sim.jit): once the tree carried modal links, LLVM
-    stopped inlining it into the step, and the call, with `System` and `Work` passed field by
-    field, made rigid runs 8 % slower."""
+    at every start from a given state. A no-op without a tree. Inlined (sim.jit): once the
+    tree carried modal links, LLVM stopped inlining it into the step, and the call, with
+    `System` and `Work` passed field by field, made rigid runs 8 % slower."""
     if sys.tree.shape[0] == 0:
         return
-    n = sys.n
     tree_kinematics(
         sys, t, y, work.tree_q, work.tree_qd, work.tree_jac, work.tree_bias, work.tree_rot
     )
+    adopt_tree_state(sys, work, y)
+
+
+@kernel_inline
+def adopt_tree_state(sys, work, y: np.ndarray) -> None:
+    """Overwrite the absolute q and q̇ in y with those the last evaluation rebuilt from the
+    tree (work.tree_q, work.tree_qd): `project_onto_tree` without rebuilding them, when that
+    evaluation was at y itself, as DOPRI5's last stage is at the step's end. A no-op without
+    a tree."""
+    if sys.tree.shape[0] == 0:
+        return
+    n = sys.n
     for i in range(n):
         y[i] = work.tree_q[i]
         y[n + i] = work.tree_qd[i]

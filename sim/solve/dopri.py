@@ -10,7 +10,7 @@ and the code DOPRI5). The loop around it (events, sampling, step control) is
 import numpy as np
 
 from sim.jit import kernel
-from sim.solve.dae import project_onto_tree, rhs
+from sim.solve.dae import adopt_tree_state, rhs
 from sim.solve.dense import hermite_coefficients, interpolate
 from sim.solve.record import record_row
 from sim.solve.status import OK
@@ -143,8 +143,9 @@ def step(sys, work, carry, mem, t: float, h: float, y: np.ndarray, options, tall
         return s, np.inf
     # a tree mechanism's absolute coordinates follow its angles, so that the events and the
     # continuous extension read the gaps where its forces read them (k7 depends on the angles
-    # only)
-    project_onto_tree(sys, work, t + h, work.ynew)
+    # only, and its evaluation, the last, rebuilt them at the step's end: the projection onto
+    # the tree without a second rebuild)
+    adopt_tree_state(sys, work, work.ynew)
     _dense_coefficients(work, y, k1, h)
     return OK, _error_norm(work, y, k1, h, 2 * sys.n, options.rtol, options.atol)
 

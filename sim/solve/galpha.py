@@ -52,6 +52,7 @@ from sim.solve.dae import (
     factored_accelerations,
     generalized_forces,
     kinetic_energy,
+    no_rotations,
     project_velocities,
 )
 from sim.solve.dense import hermite_coefficients, interpolate
@@ -173,7 +174,7 @@ def _residual(sys, work, mem, t, q, v, xdd, lam, bh2, rtol, atol) -> float:
     n = sys.n
     m = sys.m
     x = work.it_rhs
-    generalized_forces(sys, work, t, q, v, mem)
+    generalized_forces(sys, work, t, q, v, mem, no_rotations(work))
     constraint_terms(sys, t, q, v, work.phi, work.jac, work.gamma, work.nu)
     block_times(sys, sys.mass, xdd, work.scratch)
     largest = 0.0
@@ -349,7 +350,7 @@ def _step(sys, work, carry, mem, t: float, h: float, y: np.ndarray, rtol, atol, 
         if factor_schur(sys, work) != OK:
             return SINGULAR, np.inf, evaluations, jacobians
         project_velocities(sys, work, yn[n : 2 * n])
-        generalized_forces(sys, work, t + h, yn[:n], yn[n : 2 * n], mem)
+        generalized_forces(sys, work, t + h, yn[:n], yn[n : 2 * n], mem, no_rotations(work))
         constraint_terms(sys, t + h, yn[:n], yn[n : 2 * n], work.phi, work.jac, work.gamma, work.nu)
         evaluations += 1
     s = factored_accelerations(sys, work, yn[n : 2 * n], k6)

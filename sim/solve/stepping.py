@@ -26,7 +26,7 @@ all state between chunks lives in the structures it passes (`sim.solve.state`).
 import numpy as np
 
 from sim.jit import kernel
-from sim.model.clearance import face_switch_energy, gap
+from sim.model.clearance import face_switch_energy, gap, gap_depths
 from sim.model.system import OUT_NORMAL_FORCE, OUT_PENETRATION
 from sim.solve import methods
 from sim.solve.dae import SC_DRIVE_TORQUE, project_onto_tree, rhs
@@ -76,11 +76,11 @@ def _first_event(sys, work, mem, y: np.ndarray) -> tuple[int, float]:
     the fraction of the step where it crosses (0 when it already disagreed at the
     start). (-1, 1.0) when there is none."""
     n = sys.n
-    yn = work.ynew
     best = -1
     best_theta = 1.0
+    gap_depths(sys, work.ynew[:n], work.gaps)
     for g in range(work.gaps.shape[0]):
-        d1, _ = gap(sys, g, yn[:n], yn[n : 2 * n])
+        d1 = work.gaps[g]
         closed = mem[g, 0] > 0.0
         if (d1 > 0.0) == closed or d1 == 0.0:
             continue

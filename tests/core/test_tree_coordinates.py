@@ -10,6 +10,12 @@ import numpy as np
 import pytest
 
 from sim.model.assembly import build_system
+from sim.model.clearance import (
+    gap,
+    gap_depths,
+    revolute_clearance_forces,
+    translational_clearance_forces,
+)
 from sim.model.system import CON_REVOLUTE
 from sim.run import prepare
 from sim.scene import load_scene
@@ -107,6 +113,40 @@ def test_tree_and_multiplier_forms_agree_on_the_manifold(links):
     assert torque_tree == pytest.approx(torque_abs, rel=1e-9, abs=1e-9)
     # drive power and dissipated power
     np.testing.assert_allclose(d_tree[2 * n :], d_abs[2 * n :], rtol=1e-9)
+
+
+@pytest.mark.parametrize("links", [(), MODAL], ids=["rigid", "modal"])
+def test_contact_forces_from_the_trees_rotations_equal_those_computed(links):
+    # The tree's table holds each body's (cos θ, sin θ) at its offset; read at a wrong
+    # offset, or stale, the forces of a state in contact would differ
+    t, y, mem = _contact_state(*links)
+    tree = prepare(_scene(*links, "simulation.revolutions=1"))
+    system, work = tree.system, tree.work
+    assert rhs(system, work, mem.copy(), t, y, np.zeros_like(y)) == OK
+    q, qd = work.tree_q, work.tree_qd
+    forces = []
+    for rot in (work.tree_rot, np.zeros((0, 2))):
+        gen = np.zeros(system.n)
+        jout = np.zeros_like(work.jout)
+        revolute_clearance_forces(system, q, qd, mem.copy(), gen, jout, rot)
+        translational_clearance_forces(system, q, qd, mem.copy(), gen, jout, rot)
+        forces.append((gen, jout))
+    (gen_table, jout_table), (gen_computed, jout_computed) = forces
+    assert np.abs(gen_computed).max() > 100.0  # contact forces of hundreds of newtons
+    # the same cos and sin of the same angles: equal to the bit
+    np.testing.assert_array_equal(gen_table, gen_computed)
+    np.testing.assert_array_equal(jout_table, jout_computed)
+
+
+def test_the_end_of_step_scan_gives_every_gaps_depth():
+    _, y, mem = _contact_state()
+    system, _ = build_system(_scene("solver.coordinates=absolute"))
+    n = system.n
+    depths = np.zeros(mem.shape[0])
+    gap_depths(system, y[:n], depths)
+    each = [gap(system, g, y[:n], y[n : 2 * n])[0] for g in range(mem.shape[0])]
+    assert (depths > 0).any() and (depths < 0).any()
+    np.testing.assert_array_equal(depths, each)
 
 
 @pytest.mark.parametrize("links", [(), MODAL], ids=["rigid", "modal"])

@@ -26,8 +26,9 @@ def sixbar():
 def _ours(system, q, qd, mem):
     gen = np.zeros(system.n)
     jout = np.zeros((2, N_JOINT_OUT))
-    revolute_clearance_forces(system, q, qd, mem, gen, jout)
-    translational_clearance_forces(system, q, qd, mem, gen, jout)
+    computed = np.zeros((0, 2))  # no table of rotations: each body's from q
+    revolute_clearance_forces(system, q, qd, mem, gen, jout, computed)
+    translational_clearance_forces(system, q, qd, mem, gen, jout, computed)
     return gen
 
 
