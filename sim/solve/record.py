@@ -48,7 +48,6 @@ def _blocks(quantities, n_bodies: int, n_joints: int, leading: int) -> Layout:
 
 
 @cache  # read at every energy audit, a quarter revolution apart: built once per size
-@cache
 def column_layout(n_bodies: int, n_joints: int) -> Layout:
     """Name → (first column, shape per sample) of every sampled quantity (`sim.quantities`,
     recorded SAMPLE), in the table's order, which `write_row` follows."""
