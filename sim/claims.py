@@ -31,6 +31,7 @@ from sim.analysis.verdicts import (
     NOT_EVALUATED,
     NOT_SUPPORTED,
     SUPPORTED,
+    UNDECIDED,
     combine,
     intervals_text,
     trend,
@@ -172,8 +173,22 @@ MODEL_AND_CHANNEL_EXPONENTS = (
 )
 
 
+#: the paper's reading of its Table 3, as the verdicts of the flagship's channels: a positive
+#: largest exponent for A x, A y and B x (chaotic), a negative one for B y (periodic)
+FLAGSHIP_VERDICTS = {"A.x": "chaotic", "A.y": "chaotic", "B.x": "chaotic", "B.y": "periodic"}
+
+
+def _channel_component(verdict: str, expected: str) -> str:
+    """A channel's part of a claim: supported when its verdict is the expected one, undecided
+    when its indicators decide nothing, not supported when they decide otherwise."""
+    if verdict == expected:
+        return SUPPORTED
+    return UNDECIDED if verdict == "undecided" else NOT_SUPPORTED
+
+
 def claim_flagship_chaos(inputs: Inputs) -> dict:
-    """Signs of the largest Lyapunov exponents and the period of B y's section: one run."""
+    """The verdicts of A x, A y, B x (chaotic) and B y (periodic, a single section point), each
+    from its decided indicators (sim.analysis.classify): one run."""
     claim = (
         "At 0.5 mm and 150 rpm: largest Lyapunov exponent positive for A x, A y, B x and "
         "negative for B y; the Poincaré map of B y stays a single point."
@@ -181,14 +196,14 @@ def claim_flagship_chaos(inputs: Inputs) -> dict:
     if "flagship_analysis" not in inputs:
         return _row(claim, NOT_EVALUATED, "no chaos analysis")
     a = _open(inputs["flagship_analysis"])
-    lam = {str(c): float(a.lyapunov_exponent.sel(channel=c)) for c in a.channel.values}
     verdicts = {str(c): str(a.verdict.sel(channel=c).item()) for c in a.channel.values}
     period = {str(c): int(a.section_period.sel(channel=c)) for c in a.channel.values}
-    expected = {"A.x": 1, "A.y": 1, "B.x": 1, "B.y": -1}
-    signs = [np.sign(lam.get(c, np.nan)) == s for c, s in expected.items()]
-    single = period.get("B.y") == 1
-    held = sum(signs) + single
-    verdict = SUPPORTED if held == 5 else (NOT_SUPPORTED if held <= 1 else MIXED)
+    components = [
+        _channel_component(verdicts.get(c, "undecided"), v) for c, v in FLAGSHIP_VERDICTS.items()
+    ]
+    components.append(SUPPORTED if period.get("B.y") == 1 else NOT_SUPPORTED)
+    verdict = combine(components)
+    lam = {str(c): float(a.lyapunov_exponent.sel(channel=c)) for c in a.channel.values}
     evidence = "; ".join(
         f"{c}: λ = {lam[c]:.3g} 1/s ({verdicts[c]}, section period {period[c]})" for c in lam
     )
@@ -207,8 +222,9 @@ def claim_flagship_chaos(inputs: Inputs) -> dict:
     if model is not None:
         evidence = (
             "model-based largest exponent of the linkage (Benettin on the model's own "
-            f"integrator): {model}. Per-channel time-series exponents (Rosenstein, the paper's "
-            f"method), on which the signs are judged: {evidence}. " + MODEL_AND_CHANNEL_EXPONENTS
+            f"integrator): {model}. Per-channel verdicts, from the decided indicators (the "
+            f"Poincaré period, the exponents, the 0–1 test): {evidence}. "
+            + MODEL_AND_CHANNEL_EXPONENTS
         )
     return _row(claim, verdict, evidence)
 

@@ -24,7 +24,7 @@ from sim.model.system import (
     n_gaps,
 )
 from sim.results import build_dataset, decode_rows, energy_balance, energy_error_relative
-from sim.solve import stepping
+from sim.solve import lockstep, stepping
 from sim.solve.dae import Work, make_work, state_size
 from sim.solve.methods import Dopri5, method_of
 from sim.solve.record import peak_width, record_row, row_width
@@ -128,6 +128,33 @@ class Integration:
             self.tally,
         )
 
+    def clear_step_log(self) -> None:
+        """Start a new log of accepted step ends (the run keeps one if prepared with
+        `step_log`)."""
+        self.tally[0]["logged"] = 0
+
+    def follow(self, leader: "Integration") -> int:
+        """Advance through the step ends `leader` logged since its log was cleared, with this
+        integration's own state and contact events (sim.solve.lockstep.follow); the status
+        code. ValueError when the leader took more steps than its log holds."""
+        n = leader.count("logged")
+        if n > leader.buffers.step_ends.size:
+            raise ValueError(
+                f"the leading trajectory took {n} steps, more than its log of "
+                f"{leader.buffers.step_ends.size} holds: shorten the interval"
+            )
+        return lockstep.follow(
+            self.system,
+            self.work,
+            self.carry,
+            self.trajectory,
+            leader.buffers.step_ends,
+            n,
+            self.options,
+            self.buffers,
+            self.tally,
+        )
+
     def snapshot(self, carried: bool = True) -> Snapshot:
         """A restart point at the time reached; with `carried`, one that resumes exactly."""
         return Snapshot(_copied(self.trajectory), _copied(self.carry) if carried else None)
@@ -157,10 +184,12 @@ def prepare(
     rigid: bool = False,
     revolutions: float | None = None,
     start: State | None = None,
+    step_log: int = 0,
 ) -> Integration:
     """Assemble the system, its initial state and the output buffers. The initial state is
     the assembled one, or with `start` the end of a previous run projected onto this scene
-    (sim.model.continuation; ContinuationError when it cannot be)."""
+    (sim.model.continuation; ContinuationError when it cannot be). `step_log` > 0 keeps a log of
+    that many accepted step ends for a lockstep follower (sim.solve.lockstep)."""
     system, layout = build_system(scene, ideal=ideal, rigid=rigid)
     q0, qd0 = initial_state(scene, system, layout)
     mem = np.zeros((n_gaps(system), 3))
@@ -203,6 +232,7 @@ def prepare(
         # one row per revolution (ending at each section), one more for what follows the last
         rev_peaks=np.zeros((sec_t.size + 1, n_peaks)),
         rev_events=np.zeros(sec_t.size + 1, dtype=np.int64),
+        step_ends=np.zeros(step_log),
     )
     integ = Integration(
         system=system,
@@ -415,12 +445,18 @@ class Run:
         rigid: bool = False,
         revolutions: float | None = None,
         member: Member | None = None,
+        step_log: int = 0,
     ):
         self.member = Member() if member is None else member
         self.scene = perturbed(scene, self.member)
         self.start, self.ideal, self.rigid = start, ideal, rigid
         self.integ = prepare(
-            self.scene, ideal=ideal, rigid=rigid, revolutions=revolutions, start=start
+            self.scene,
+            ideal=ideal,
+            rigid=rigid,
+            revolutions=revolutions,
+            start=start,
+            step_log=step_log,
         )
         self.period = crank_period(self.scene)
         self.revolutions = (

@@ -77,8 +77,10 @@ def section_indicators(
             structure = section_structure(points, extent)
             period[i, j] = structure.period
             verdict[i, j] = classify(
-                lyapunov_exponent=exponent,
-                lyapunov_stderr=stderr,
+                model_exponent=exponent,
+                model_stderr=stderr,
+                lyapunov_exponent=np.nan,
+                lyapunov_stderr=np.nan,
                 zero_one_K=K[i, j],
                 section_period=structure.period,
                 section_return_distance=structure.return_distance,

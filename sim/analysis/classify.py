@@ -1,4 +1,4 @@
-"""Periodic, quasi-periodic or chaotic: one verdict per channel from three indicators."""
+"""Periodic, quasi-periodic, chaotic or undecided: one verdict per channel from its indicators."""
 
 import math
 from collections.abc import Sequence
@@ -12,7 +12,7 @@ MIN_GROWTH_PER_TIME_SCALE = 0.01
 #: K above this is a chaotic vote of the 0–1 test (K tends to 0 or 1)
 ZERO_ONE_THRESHOLD = 0.5
 
-VERDICTS = ("periodic", "quasi-periodic", "chaotic")
+VERDICTS = ("periodic", "quasi-periodic", "chaotic", "undecided")
 
 
 @dataclass(frozen=True)
@@ -32,13 +32,22 @@ class Verdict:
 
 
 def lyapunov_vote(exponent: float, stderr: float, time_scale: float) -> str | None:
-    """'chaotic' for a significantly positive exponent, 'regular' otherwise, None if unknown."""
-    if not math.isfinite(exponent):
+    """The vote of an exponent λ ± s (1/s) over a time scale T (s).
+
+    'chaotic' when λ is significantly positive (λ > SIGNIFICANCE · s) and grows separations by
+    more than ``MIN_GROWTH_PER_TIME_SCALE`` e-folds per T; 'regular' when even its upper bound
+    λ + SIGNIFICANCE · s grows them by less than that; None when the interval straddles the
+    threshold (the exponent cannot be told from zero) or the exponent is unknown. An undecided
+    exponent does not vote: −0.8 ± 11 1/s says nothing about regularity.
+    """
+    if not (math.isfinite(exponent) and math.isfinite(stderr)):
         return None
-    positive = (
-        exponent > SIGNIFICANCE * stderr and exponent * time_scale > MIN_GROWTH_PER_TIME_SCALE
-    )
-    return "chaotic" if positive else "regular"
+    least = MIN_GROWTH_PER_TIME_SCALE / time_scale
+    if exponent > SIGNIFICANCE * stderr and exponent > least:
+        return "chaotic"
+    if exponent + SIGNIFICANCE * stderr < least:
+        return "regular"
+    return None
 
 
 def zero_one_vote(K: float) -> str | None:
@@ -60,28 +69,32 @@ def classify(
     section_period: int,
     section_return_distance: float,
     time_scale: float,
+    model_exponent: float = math.nan,
+    model_stderr: float = math.nan,
 ) -> Verdict:
-    """Verdict on one channel from its Lyapunov exponent, 0–1 test and Poincaré section.
+    """Verdict on one channel from its Poincaré section, the Lyapunov exponents and the 0–1 test.
 
     Explanation of the method:
-        The three indicators answer different questions. The Poincaré section tells periodic
-        motion (points repeat every k crossings, see :mod:`sim.analysis.poincare`) from the
-        rest; it cannot tell a closed curve (quasi-periodic) from a scatter (chaos) on its
-        own. The largest Lyapunov exponent and the 0–1 test tell chaos (exponential divergence,
+        The indicators answer different questions. The Poincaré section tells periodic motion
+        (points repeat every k crossings, see :mod:`sim.analysis.poincare`) from the rest; it
+        cannot tell a closed curve (quasi-periodic) from a scatter (chaos) on its own. The
+        largest Lyapunov exponent and the 0–1 test tell chaos (exponential divergence,
         diffusive walk) from regular motion. So:
 
         - section points repeat → 'periodic';
-        - otherwise, the Lyapunov vote decides (the 0–1 vote when the exponent is unknown):
-          'chaotic' if it says chaotic, 'quasi-periodic' if it says regular.
+        - otherwise the first DECIDED chaos vote, in this order, gives 'chaotic' or
+          'quasi-periodic': the model's own exponent (Benettin on the linkage, when given), the
+          channel's time-series exponent, the 0–1 test;
+        - 'undecided' when none of them is decided.
 
-        The exponent is primary because it is the quantity the linkage literature reports; when
-        the 0–1 test disagrees, ``agreement`` drops below 1 and the reason says so. An exponent
-        votes chaotic when it exceeds ``SIGNIFICANCE`` (2) standard errors and its growth per
-        ``time_scale`` exceeds ``MIN_GROWTH_PER_TIME_SCALE`` (0.01 e-folds); K votes chaotic
-        above 0.5.
+        An exponent votes only when its interval λ ± ``SIGNIFICANCE`` · s lies on one side of
+        the least practical growth (:func:`lyapunov_vote`); K votes chaotic above 0.5 and
+        regular below. The model exponent comes first because it is the linkage's own and the
+        quantity the literature reports; when a decided vote disagrees with the verdict,
+        ``agreement`` drops below 1 and the reason says so.
 
     Choosing the parameters:
-        time_scale: the forcing period (the crank period for the linkage), in the exponent's
+        time_scale: the forcing period (the crank period for the linkage), in the exponents'
             inverse units.
 
     References:
@@ -90,42 +103,59 @@ def classify(
         Springer (1989) (periodic, quasi-periodic and chaotic steady states).
 
     Args:
-        lyapunov_exponent: largest exponent (NaN when it could not be estimated).
+        lyapunov_exponent: the channel's largest exponent (NaN when it could not be estimated).
         lyapunov_stderr: its standard error.
         zero_one_K: K of the 0–1 test on the section points (NaN when unknown).
         section_period: period of the section points, 0 when they do not repeat.
         section_return_distance: normalised return distance at that period.
         time_scale: the forcing period.
+        model_exponent, model_stderr: the model's largest exponent and its standard error
+            (NaN: not computed).
 
     Returns:
         A :class:`Verdict`.
     """
-    lyap = lyapunov_vote(lyapunov_exponent, lyapunov_stderr, time_scale)
+    model = lyapunov_vote(model_exponent, model_stderr, time_scale)
+    series = lyapunov_vote(lyapunov_exponent, lyapunov_stderr, time_scale)
     zero_one = zero_one_vote(zero_one_K)
+    decided = model or series or zero_one
     if section_period > 0:
         verdict = "periodic"
         why = f"the Poincaré points repeat every {section_period} crossing(s)"
-    elif (lyap or zero_one) == "chaotic":
+    elif decided == "chaotic":
         verdict = "chaotic"
         why = "the section points do not repeat and the motion diverges"
-    else:
+    elif decided == "regular":
         verdict = "quasi-periodic"
         why = "the section points do not repeat but the motion does not diverge"
+    else:
+        verdict = "undecided"
+        why = "the section points do not repeat and no chaos indicator is decided"
 
-    votes = [vote for vote in (lyap, zero_one) if vote is not None]
+    votes = [vote for vote in (model, series, zero_one) if vote is not None]
     consistent = sum(_consistent(vote, verdict) for vote in votes) + 1  # + the section
     agreement = consistent / (len(votes) + 1)
+    model_text = (
+        ""
+        if math.isnan(model_exponent)
+        else f"model exponent {model_exponent:.3g} ± {model_stderr:.2g} 1/s votes "
+        f"{model or 'nothing'}, "
+    )
     reason = (
         f"{verdict}: {why} (return distance {section_return_distance:.2g} of the orbit size); "
-        f"exponent {lyapunov_exponent:.3g} ± {lyapunov_stderr:.2g} 1/s votes {lyap or 'nothing'}, "
-        f"0–1 test K = {zero_one_K:.2f} votes {zero_one or 'nothing'}"
+        + model_text
+        + f"series exponent {lyapunov_exponent:.3g} ± {lyapunov_stderr:.2g} 1/s votes "
+        f"{series or 'nothing'}, 0–1 test K = {zero_one_K:.2f} votes {zero_one or 'nothing'}"
         + ("" if agreement == 1.0 else "; the indicators disagree")
         + "."
     )
     evidence: dict[str, float | int | str] = {
+        "model_exponent": model_exponent,
+        "model_stderr": model_stderr,
+        "model_vote": model or "none",
         "lyapunov_exponent": lyapunov_exponent,
         "lyapunov_stderr": lyapunov_stderr,
-        "lyapunov_vote": lyap or "none",
+        "lyapunov_vote": series or "none",
         "zero_one_K": zero_one_K,
         "zero_one_vote": zero_one or "none",
         "section_period": section_period,
@@ -136,19 +166,26 @@ def classify(
     return Verdict(verdict=verdict, evidence=evidence, agreement=agreement)
 
 
+def _exponent_vote(verdict: Verdict) -> str:
+    """The verdict's decided exponent vote: the model's, else the time series', else 'none'."""
+    model = verdict.evidence["model_vote"]
+    return model if model != "none" else str(verdict.evidence["lyapunov_vote"])
+
+
 def indicator_agreement(verdicts: Sequence[Verdict]) -> dict[str, float]:
     """Agreement between the indicators over many channels (or runs of a sweep).
 
     Returns:
         ``mean_agreement``: mean of the per-channel agreement; ``lyapunov_zero_one``: fraction
-        of the channels where both chaos votes exist and agree (NaN if none has both).
+        of the channels where a decided exponent vote (the model's, else the time series') and
+        the 0–1 vote both exist and agree (NaN if none has both).
     """
     if not verdicts:
         return {"mean_agreement": math.nan, "lyapunov_zero_one": math.nan}
     both = [
-        v.evidence["lyapunov_vote"] == v.evidence["zero_one_vote"]
+        _exponent_vote(v) == v.evidence["zero_one_vote"]
         for v in verdicts
-        if v.evidence["lyapunov_vote"] != "none" and v.evidence["zero_one_vote"] != "none"
+        if _exponent_vote(v) != "none" and v.evidence["zero_one_vote"] != "none"
     ]
     return {
         "mean_agreement": sum(v.agreement for v in verdicts) / len(verdicts),

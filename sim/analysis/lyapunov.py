@@ -150,7 +150,9 @@ def benettin(
         the default distance, perturbation and rescaling, while the others are taken from the
         perturbed trajectory as they are. The reference may have its own propagator
         (``advance_reference``), e.g. a run that records its outputs as it goes, so the run
-        itself serves as the reference and only the perturbed trajectory costs extra.
+        itself serves as the reference and only the perturbed trajectory costs extra. In each
+        interval the reference is advanced first, so the perturbed propagator may take the
+        reference's own steps (:mod:`sim.solve.lockstep`).
 
     Choosing the parameters:
         d0: small enough to stay in the linear regime over one interval (d0 · e^(λ·interval)
@@ -208,7 +210,9 @@ def benettin(
     for k in range(-transient_intervals, n_intervals):
         # measured rather than assumed d0, so a non-homogeneous distance stays correct
         d_start = distance(y_ref, y_pert)
-        y_ref, y_pert = advance_reference(y_ref, t, interval), advance(y_pert, t, interval)
+        # the reference first: a perturbed propagator may follow the reference's own steps
+        y_ref = advance_reference(y_ref, t, interval)
+        y_pert = advance(y_pert, t, interval)
         t += interval
         d_end = distance(y_ref, y_pert)
         if not d_end > 0.0:

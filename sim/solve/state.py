@@ -6,7 +6,8 @@
 - `Carry`: what one step hands to the next besides the trajectory and can be recomputed from
   it (the derivative at the step's start, the generalized-α start data) or kept as an
   economy (the Newton factors); `sim.solve.dae.Work` is pure scratch.
-- `Buffers`: the requested output times and the rows, sections and peaks recorded.
+- `Buffers`: the requested output times and the rows, sections and peaks recorded, and the
+  log of accepted step ends a lockstep follower takes (`sim.solve.lockstep`).
 - `TALLY`: counters of the run and the details of a failure.
 
 Mutable scalars are numba structured records, one-element arrays (`record[0]` in compiled
@@ -40,6 +41,7 @@ TALLY = np.dtype(
         ("culprit", np.int64),  # the joint of a PENETRATION failure
         ("failure_time", np.float64),  # s, time of a failure
         ("failure_step", np.float64),  # s, the step size of a STEP_COLLAPSE
+        ("logged", np.int64),  # accepted steps logged in Buffers.step_ends (may exceed its size)
     ]
 )
 
@@ -88,6 +90,9 @@ class Buffers(NamedTuple):
     peaks: np.ndarray  # (peaks,) max |·| over the run (sim.solve.stepping._update_peaks)
     rev_peaks: np.ndarray  # (sections + 1, peaks) the same per revolution
     rev_events: np.ndarray  # (sections + 1,) contact events per revolution
+    # (capacity,) s, the end of every accepted step since tally.logged was last zeroed, for a
+    # trajectory that follows this one (sim.solve.lockstep); empty: nothing is logged
+    step_ends: np.ndarray
 
 
 def make_carry(n: int, m: int) -> Carry:

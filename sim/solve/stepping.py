@@ -213,6 +213,16 @@ def _sample(sys, work, mem, t0, h, buffers, tally, options) -> int:
 
 
 @kernel
+def _log_step(buffers, tally, t: float) -> None:
+    """Log the end t of an accepted step for a lockstep follower (`sim.solve.lockstep`), when
+    the run keeps a log; the count goes on past the log's size, so an overflow shows."""
+    if buffers.step_ends.shape[0] > 0:
+        if tally.logged < buffers.step_ends.shape[0]:
+            buffers.step_ends[tally.logged] = t
+        tally.logged += 1
+
+
+@kernel
 def _fail(tally, status: int, t: float) -> int:
     """Book a failure at time t; returns its status."""
     tally.failure_time = t
@@ -304,6 +314,7 @@ def integrate(sys, work, carry, trajectory, t_end: float, options, buffers, tall
             return _fail(tally, s, t)
         t += hs
         tally.accepted += 1
+        _log_step(buffers, tally, t)
         for i in range(ny):
             y[i] = work.ynew[i]
             k0[i] = k_end[i]

@@ -12,7 +12,7 @@ from dataclasses import dataclass
 import numpy as np
 import xarray as xr
 
-from sim.analysis.lyapunov import BenettinResult, benettin
+from sim.analysis.lyapunov import BenettinResult, Rescale, benettin
 from sim.model.assembly import crank_period, omega
 from sim.model.continuation import State
 from sim.run import Integration, Run, SimulationError, Snapshot, diagnose, prepare
@@ -26,17 +26,38 @@ DEFAULT_INTERVAL_REVOLUTIONS = 1 / 32
 #: default revolutions of :func:`run_with_exponent`'s perturbed trajectory before recording
 DEFAULT_ALIGNMENT_REVOLUTIONS = 2.0
 #: default integration tolerances (rtol, atol) of both trajectories, unless the scene's are
-#: tighter: the two trajectories' different step sequences differ by their local errors, and
-#: at the runs' rtol 1e-6 that noise floor lies just below separations of 1e-6 m
-#: (see :func:`linkage_lyapunov`)
-DEFAULT_TOLERANCES = (1e-8, 1e-11)
+#: tighter: the tightest whose exponent a tighter one does not move (see :func:`linkage_lyapunov`)
+DEFAULT_TOLERANCES = (1e-6, 1e-8)
+#: the contact memory's columns (sim.solve.state.Trajectory.mem): in-contact flag, onset rate
+#: δ̇⁻ (m/s), graze mark
+MEMORY_CLOSED, MEMORY_ONSET_RATE, MEMORY_COLUMNS = 0, 1, 3
 #: the fields of the integration's clock (sim.solve.state.CLOCK) packed with a trajectory
 CONTROLLER = ("t", "h", "facold")
+#: the reference's log of step ends: room for the accepted steps of one renormalisation
+#: interval (8 MiB; the flexible flagship's ANCF beams under DOPRI5 take ~10^4 in 1/16 revolution)
+STEP_LOG = 1 << 20
+
+
+def _pack(integ: Integration) -> np.ndarray:
+    """An integration's current trajectory (:class:`sim.solve.state.Trajectory`) as one array."""
+    clock = integ.trajectory.clock[0]
+    return np.concatenate([integ.y, integ.mem.ravel(), [clock[k] for k in CONTROLLER]])
+
+
+def _check(integ: Integration, status: int, scene_name: str, which: str) -> None:
+    if status != OK:
+        raise SimulationError(f"scene '{scene_name}' ({which}): {diagnose(integ, status)}")
 
 
 @dataclass(frozen=True, eq=False)
 class LinkagePropagator:
-    """``advance(state, t, dt)`` of a linkage for :func:`~sim.analysis.lyapunov.benettin`.
+    """The two trajectories of :func:`~sim.analysis.lyapunov.benettin` on a linkage, in lockstep.
+
+    The reference (``leader``) is integrated by its own step control and logs the end of every
+    accepted step; ``advance`` takes the perturbed trajectory through those same step ends
+    (:mod:`sim.solve.lockstep`), splitting a step only at its own contact events. The two are
+    then orbits of one discrete map, and their separation is free of the integration noise that
+    two independent step sequences add (which made the exponent depend on the tolerance).
 
     The packed state of a trajectory is everything its future depends on:
     ``(q, q̇, W_drive, E_dissipated)`` (the integrator's ``y``), the contact memory of every gap
@@ -44,53 +65,92 @@ class LinkagePropagator:
     previous error). Only q and q̇ are continuous (``mask``); the contact memory travels with
     its trajectory unchanged, the energy quadratures do not enter the distance.
 
-    Distance (see :meth:`weights`): the Euclidean norm of (Δq, Δq̇ / ω), ω the crank speed, so that
-    positions (m; rad and dimensionless slopes count as they are) and velocities weigh alike
-    over one radian of crank motion. Any norm gives the same exponent; this one keeps the
+    Distance (see :meth:`distance`): the Euclidean norm of (Δq, Δq̇ / ω), ω the crank speed, so
+    that positions (m; rad and dimensionless slopes count as they are) and velocities weigh
+    alike over one radian of crank motion. Any norm gives the same exponent; this one keeps the
     separation's components of comparable size, which shortens the transient.
 
     Attributes:
-        integration: the prepared run (:func:`sim.run.prepare`) whose compiled integrator and
-            work arrays both trajectories share, one after the other.
+        integration: the perturbed trajectory's integration (:func:`sim.run.prepare`).
+        leader: the reference's integration, prepared with a step log.
         scene_name: for error messages.
     """
 
     integration: Integration
+    leader: Integration
     scene_name: str
 
-    @property
-    def _sizes(self) -> tuple[int, int, int]:
-        integ = self.integration
-        return integ.y.size, integ.mem.size, len(CONTROLLER)
-
     def pack(self) -> np.ndarray:
-        """The integration's current trajectory (:class:`sim.solve.state.Trajectory`) as one
-        array."""
-        integ = self.integration
-        clock = integ.trajectory.clock[0]
-        return np.concatenate([integ.y, integ.mem.ravel(), [clock[k] for k in CONTROLLER]])
+        """The reference's current trajectory as one array."""
+        return _pack(self.leader)
 
     def mask(self) -> np.ndarray:
-        """True for the continuous entries of a packed state: q and q̇."""
-        mask = np.zeros(sum(self._sizes), dtype=bool)
-        mask[: 2 * self.integration.system.n] = True
+        """True for the entries of a packed state that are continuous in every state: q, q̇."""
+        integ = self.integration
+        mask = np.zeros(integ.y.size + integ.mem.size + len(CONTROLLER), dtype=bool)
+        mask[: 2 * integ.system.n] = True
         return mask
 
+    def _memory(self, column: int) -> slice:
+        """The packed entries of one column of the contact memory, a gap a row."""
+        n_y, n_mem = self.integration.y.size, self.integration.mem.size
+        return slice(n_y + column, n_y + n_mem, MEMORY_COLUMNS)
+
+    def _continuous(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        """True for the entries in which two packed states differ continuously: q, q̇ and the
+        onset rate δ̇⁻ of every gap in contact in both (it was taken from q̇ at the onset, and
+        the Lankarani–Nikravesh force depends on it as on the state)."""
+        continuous = self.mask()
+        closed = (a[self._memory(MEMORY_CLOSED)] > 0.0) & (b[self._memory(MEMORY_CLOSED)] > 0.0)
+        continuous[self._memory(MEMORY_ONSET_RATE)] = closed
+        return continuous
+
     def distance(self, scene: dict) -> Callable[[np.ndarray, np.ndarray], float]:
-        """The distance between two packed states: the norm of (Δq, Δq̇ / ω) (class docstring)."""
-        mask = self.mask()
+        """The distance between two packed states: the norm of (Δq, Δq̇ / ω, Δδ̇⁻ / ω) over
+        their continuous entries (class docstring, :meth:`_continuous`)."""
+        weights = np.zeros(self.mask().size)
         n = self.integration.system.n
-        weights = np.concatenate([np.ones(n), np.full(n, 1.0 / omega(scene))])
+        weights[:n] = 1.0
+        weights[n : 2 * n] = 1.0 / omega(scene)
+        weights[self._memory(MEMORY_ONSET_RATE)] = 1.0 / omega(scene)
 
         def distance(a: np.ndarray, b: np.ndarray) -> float:
-            return float(np.linalg.norm(weights * (a[mask] - b[mask])))
+            return float(np.linalg.norm((weights * (a - b))[self._continuous(a, b)]))
 
         return distance
 
+    def rescale(self, distance: Callable[[np.ndarray, np.ndarray], float]) -> Rescale:
+        """Renormalisation: the perturbed state pulled radially towards the reference's, to
+        distance d0, over the continuous entries (the onset rates of the gaps in contact in
+        both included, so that the perturbed trajectory's contact law stays consistent with
+        its rescaled state); its flags and the rest stay its own."""
+
+        def rescale(y_ref: np.ndarray, y_pert: np.ndarray, d0: float) -> np.ndarray:
+            continuous = self._continuous(y_ref, y_pert)
+            factor = d0 / distance(y_ref, y_pert)
+            rescaled = y_pert.copy()
+            rescaled[continuous] = y_ref[continuous] + factor * (
+                y_pert[continuous] - y_ref[continuous]
+            )
+            return rescaled
+
+        return rescale
+
+    def advance_leader(self, state: np.ndarray, t: float, dt: float) -> np.ndarray:
+        """The reference's packed state at t + dt; it must be at t (``state`` is its packing)."""
+        leader = self.leader
+        if not np.isclose(leader.t, t, rtol=0.0, atol=1e-9 * max(1.0, abs(t))):
+            raise ValueError(f"the reference is at t = {leader.t} s, not at t = {t} s")
+        leader.clear_step_log()
+        _check(leader, leader.advance(t + dt), self.scene_name, "Lyapunov reference")
+        return _pack(leader)
+
     def advance(self, state: np.ndarray, t: float, dt: float) -> np.ndarray:
-        """The packed state at t + dt from the packed ``state`` at t (``state`` is not changed)."""
+        """The perturbed packed state at t + dt from the packed ``state`` at t (``state`` is not
+        changed), through the step ends the reference logged over the same interval: advance
+        the reference first."""
         integ = self.integration
-        n_y, n_mem, _ = self._sizes
+        n_y, n_mem = integ.y.size, integ.mem.size
         clock = np.zeros(1, dtype=CLOCK)
         for k, value in zip(CONTROLLER, state[n_y + n_mem :], strict=True):
             clock[0][k] = value
@@ -99,26 +159,26 @@ class LinkagePropagator:
         trajectory = Trajectory(
             y=state[:n_y], mem=state[n_y : n_y + n_mem].reshape(integ.mem.shape), clock=clock
         )
-        # the carried step data belong to the other trajectory (or to the state before its
-        # renormalisation): restored without them, the integrator re-evaluates them
+        # the carried step data belong to the state before its renormalisation: restored
+        # without them, the integrator re-evaluates them
         integ.restore(Snapshot(trajectory, carry=None))
-        status = integ.advance(t + dt)
-        if status != OK:
-            raise SimulationError(
-                f"scene '{self.scene_name}' (Lyapunov trajectory): {diagnose(integ, status)}"
-            )
-        return self.pack()
+        _check(integ, integ.follow(self.leader), self.scene_name, "Lyapunov trajectory")
+        return _pack(integ)
 
 
 def linkage_propagator(
     scene: dict, *, ideal: bool = False, rigid: bool = False
 ) -> LinkagePropagator:
-    """A propagator of ``scene`` positioned at its assembled initial state (t = 0).
+    """A propagator of ``scene``, both trajectories at its assembled initial state (t = 0).
 
-    No output samples are recorded (a run of zero revolutions is prepared), so the propagator
-    costs the integration alone.
+    No output samples are recorded (runs of zero revolutions are prepared), so the propagator
+    costs the integrations alone.
     """
-    return LinkagePropagator(prepare(scene, ideal=ideal, rigid=rigid, revolutions=0), scene["name"])
+    return LinkagePropagator(
+        prepare(scene, ideal=ideal, rigid=rigid, revolutions=0),
+        prepare(scene, ideal=ideal, rigid=rigid, revolutions=0, step_log=STEP_LOG),
+        scene["name"],
+    )
 
 
 def with_tolerances(scene: dict, tolerances: tuple[float, float]) -> dict:
@@ -147,51 +207,57 @@ def linkage_lyapunov(
     Explanation of the method:
         :func:`sim.analysis.lyapunov.benettin` on the full state of the mechanism: the
         reference trajectory starts at the scene's assembled initial state, the perturbed one
-        d0 away in a fixed random direction of (q, q̇); both are integrated by the run's own
-        compiled integrator (:class:`LinkagePropagator`), with their contact memory, and the
-        separation is renormalised to d0 every ``interval_revolutions``. The perturbation
-        leaves the ideal constraints by d0. In minimal coordinates (a tree mechanism,
-        :mod:`sim.model.tree`) the first step's projection drops that component; in absolute
-        coordinates Baumgarte stabilisation pulls it back at its rates (−α ± √(α² − β²)), so
-        it fades within the transient unless the motion is more stable than the stabilisation
-        itself (then the exponent found is the stabilisation's, −α + Re √(α² − β²): the
-        all-ideal mechanism has no other dynamics). Both forms give the same exponent on the
-        flagship (A + B 0.5 mm, 150 rpm, 40 revolutions with 10 transient: 120 ± 11 1/s
-        minimal, 115 ± 9 absolute).
+        d0 away in a fixed random direction of (q, q̇); the reference is integrated by the
+        run's own compiled integrator, the perturbed one through the reference's own steps
+        (:mod:`sim.solve.lockstep`), each with its own contact events and memory, and the
+        separation is renormalised to d0 every ``interval_revolutions``, the onset rates of
+        the contacts both trajectories share included (:class:`LinkagePropagator`). The
+        perturbation leaves the ideal constraints by d0. In minimal coordinates (a tree
+        mechanism, :mod:`sim.model.tree`) the first step's projection drops that component;
+        in absolute coordinates Baumgarte stabilisation pulls it back at its rates
+        (−α ± √(α² − β²)), so it fades within the transient unless the motion is more stable
+        than the stabilisation itself (then the exponent found is the stabilisation's,
+        −α + Re √(α² − β²): the all-ideal mechanism has no other dynamics).
+
+        Two things make the exponent the dynamics' and not the integrator's (docs/exponent.md
+        has the measurements). The perturbed trajectory takes the reference's steps, so the
+        two do not differ by their local integration errors. And the onset rate δ̇⁻ that each
+        impact's Lankarani–Nikravesh force remembers is renormalised with the state: left as
+        it was, the perturbed trajectory's force kept a difference e^(λ · interval) times too
+        large after every renormalisation in contact, which doubled the rigid flagship's
+        exponent and made it depend on the interval.
 
     Choosing the parameters:
-        tolerances: the two trajectories take different adaptive step sequences, so they also
-            differ by their integration errors, which the method reads as divergence. Measured
-            on the flagship (A and B 0.5 mm, 150 rpm, interval 1/32 revolution): at the runs'
-            rtol 1e-6 the exponent rises as d0 falls below 1e-6 m (121, 135, 157, 217 1/s for
-            d0 = 1e-6 … 1e-9 over 30 recorded revolutions), while at d0 = 1e-6 m it still
-            agrees with the tighter runs (116 ± 4 1/s over 180 revolutions); at rtol 1e-8
-            (atol 1e-11) it is flat from d0 = 1e-7 to 1e-5 m (97, 104, 101 ± 8 1/s over 20
-            revolutions; 126 ± 6 and 123 ± 5 for 1e-7 and 1e-6 over 180). Hence the default
-            (1e-8, 1e-11), applied where the scene's own tolerances are looser, which leaves a
-            decade of d0 on either side of the default; ``tolerances=(1, 1)`` keeps the
-            scene's (half the cost, no margin below d0 = 1e-6 m).
-        d0: inside the linear regime and above the integration noise. Impacts make the motion
+        tolerances: the exponent of the discrete map approaches the flow's as the steps
+            resolve the motion; on the flagship (A and B 0.5 mm, 150 rpm, d0 = 1e-6 m,
+            interval 1/32 revolution, 20 recorded revolutions) rtol 1e-6 and 1e-8 agree within
+            their standard errors (rigid links 57.3 ± 2.2 and 57.8 ± 5.2 1/s, modal links
+            270.7 ± 5.7 and 269.2 ± 6.2), while rtol 1e-5 reads 70 ± 6 and 295 ± 8. Hence the
+            default (1e-6, 1e-8), applied where the scene's own tolerances are looser.
+        d0: inside the linear regime and above the integration noise. The noise floor scales
+            with the tolerance, about rtol metres: at rtol 1e-6 the rigid flagship reads
+            58.0 ± 2.8, 57.3 ± 2.2, 67.0 ± 2.6 and 87.2 ± 4.3 1/s for d0 = 1e-5 … 1e-8 m; at
+            rtol 1e-8, 57.8, 59.3 and 63.2 (± 5–6) for 1e-6 … 1e-8. Impacts make the motion
             non-linear on the scale of the Hertz penetration (flagship: 1–2 µm median while in
-            contact, 18 µm at the peak), so d0 · e^(λ · interval) should not exceed it; the
-            default 1e-6 m agrees with 1e-7 m within the standard error.
+            contact, 18 µm at the peak), so d0 · e^(λ · interval) should not much exceed it.
+            The default 1e-6 m keeps a decade to the floor at the default tolerances.
         interval_revolutions: short enough that the separation grows by little more than one
-            e-fold (λ · interval ≲ 1.5; at λ · interval ≈ 3 the flagship's exponent came out
-            2 standard errors low); the default 1/32 revolution (12.5 ms at 150 rpm) suits
-            exponents up to ~120 1/s. Halve it for faster divergence.
+            e-fold (λ · interval ≲ 1.5); the default 1/32 revolution (12.5 ms at 150 rpm)
+            suits exponents up to ~120 1/s, and 1/16 … 1/128 read the same on the flagship
+            (rigid 56.9, 57.3, 58.3; modal 270.7 and 269.9 at 1/32 and 1/128, ± 2–6 1/s).
         transient_revolutions: let the reference settle on its attractor and the separation
             align with the most unstable direction; as for the run's analyses (20 by default).
-        Check with a second setting (d0 / 10, interval / 2) that the exponent does not move
-        beyond its standard error: benchmarks/lyapunov_cost.py does.
+        Check with a second setting (d0 · 10, interval / 2) that the exponent does not move
+        beyond its standard error: tests/analysis/test_model_lyapunov.py does on the flagship.
 
     Minimum data length:
-        The standard error falls like 1 / sqrt(recorded time): about ±8 1/s from 20 recorded
-        revolutions of the flagship, ±4 1/s from 180; at least 2 · N_BLOCKS renormalisation
-        intervals.
+        The standard error falls like 1 / sqrt(recorded time): ±2–6 1/s from 20 recorded
+        revolutions of the flagship; at least 2 · N_BLOCKS renormalisation intervals.
 
     Cost:
         Two integrations of the scene over ``revolutions`` at ``tolerances``, without output
-        sampling: about twice one run of the same length and tolerances.
+        sampling: about twice one run of the same length and tolerances (the perturbed one
+        rejects no step).
 
     References:
         G. Benettin, L. Galgani, A. Giorgilli, J.-M. Strelcyn, Meccanica 15 (1980) 9–20.
@@ -221,6 +287,7 @@ def linkage_lyapunov(
     scene = with_tolerances(scene, tolerances)
     propagator = linkage_propagator(scene, ideal=ideal, rigid=rigid)
     interval = interval_revolutions * crank_period(scene)
+    distance = propagator.distance(scene)
     return benettin(
         propagator.advance,
         propagator.pack(),
@@ -228,9 +295,11 @@ def linkage_lyapunov(
         interval=interval,
         n_intervals=round((revolutions - transient_revolutions) / interval_revolutions),
         d0=d0,
-        distance=propagator.distance(scene),
+        distance=distance,
+        rescale=propagator.rescale(distance),
         mask=propagator.mask(),
         transient_intervals=round(transient_revolutions / interval_revolutions),
+        advance_reference=propagator.advance_leader,
     )
 
 
@@ -267,14 +336,9 @@ def run_with_exponent(
             sweep, 1, 2 and 4 revolutions gave exponents within two standard errors of one
             another; the default is 2 (64 renormalisations).
         d0, interval_revolutions: as for :func:`linkage_lyapunov`.
-        The scene's tolerances: both trajectories use them, and their different step
-            sequences add integration noise to the separation. Measured over 6 members
-            (initial crank angle perturbed) of the rigid flagship family at 0.5 mm, 150 rpm,
-            d0 = 1e-6 m: 162 ± 6 1/s at rtol 1e-5 (atol 1e-7), against 116 ± 5 at rtol 1e-6
-            (atol 1e-8) and 117 ± 5 by :func:`linkage_lyapunov` at rtol 1e-8; at 1.0 mm
-            (4 members) 110 ± 7, 69 ± 3 and 59 ± 8. So give the scene rtol 1e-6 or tighter;
-            at 1e-5 the exponent is mostly noise-inflated (docs/performance.md, "The run as
-            the exponent's reference").
+        The scene's tolerances: both trajectories take the run's steps. Give the scene rtol
+            1e-6 or tighter: at 1e-5 the discrete map's exponent reads 20–25 % high
+            (:func:`linkage_lyapunov`).
 
     Cost:
         One run plus one trajectory over the recorded and alignment revolutions without
@@ -304,29 +368,31 @@ def run_with_exponent(
             f"alignment_revolutions = {alignment_revolutions} must lie in "
             f"(0, transient_revolutions = {transient_revolutions}]"
         )
-    run = Run(scene, start, progress=progress)
+    run = Run(scene, start, progress=progress, step_log=STEP_LOG)
     if not transient_revolutions < run.revolutions:
         raise ValueError(
             f"transient_revolutions = {transient_revolutions} must be below the run's "
             f"{run.revolutions} revolutions"
         )
-    reference = LinkagePropagator(run.integ, scene["name"])
-    perturbed = LinkagePropagator(prepare(run.scene, revolutions=0), scene["name"])
+    perturbed = LinkagePropagator(prepare(run.scene, revolutions=0), run.integ, scene["name"])
     t_align = (transient_revolutions - alignment_revolutions) * run.period
     run.advance_to(t_align)
+    distance = perturbed.distance(run.scene)
 
     def advance_reference(state: np.ndarray, t: float, dt: float) -> np.ndarray:
+        run.integ.clear_step_log()
         run.advance_to(t + dt)
-        return reference.pack()
+        return perturbed.pack()
 
     result = benettin(
         perturbed.advance,
-        reference.pack(),
+        perturbed.pack(),
         t_align,
         interval=interval_revolutions * run.period,
         n_intervals=round((run.revolutions - transient_revolutions) / interval_revolutions),
         d0=d0,
-        distance=perturbed.distance(run.scene),
+        distance=distance,
+        rescale=perturbed.rescale(distance),
         mask=perturbed.mask(),
         transient_intervals=round(alignment_revolutions / interval_revolutions),
         advance_reference=advance_reference,

@@ -48,8 +48,9 @@ def synthetic_point(clearance: float) -> xr.Dataset:
 def test_known_sections_get_their_period_K_and_verdict():
     """x: period 2 and K ≈ 0 whatever the exponent; y: no period, K ≈ 1 (Gottwald and
     Melbourne: K → 1 for the logistic map at r = 4; 0.9 leaves room for the finite series of
-    300 points), and the model exponent decides: chaotic when significantly positive,
-    quasi-periodic when it is not."""
+    300 points), and the model exponent decides when its interval does: chaotic when
+    significantly positive, quasi-periodic when significantly below any growth; an exponent
+    within two standard errors of 0 does not vote, and K decides."""
     run = synthetic_point(5e-4)
     diverging = section_indicators(run, 10, exponent=50.0, stderr=5.0)
     assert float(diverging.model_lyapunov_exponent) == 50.0
@@ -58,9 +59,12 @@ def test_known_sections_get_their_period_K_and_verdict():
     assert float(x.zero_one_K) < 0.1
     assert int(y.section_period) == 0 and str(y.verdict.item()) == "chaotic"
     assert float(y.zero_one_K) > 0.9
-    # an exponent within two standard errors of 0 votes regular: it leads over K
+    # a significantly negative exponent votes regular: it leads over K
+    contracting = section_indicators(run, 10, exponent=-20.0, stderr=2.0)
+    assert str(contracting.verdict.sel(joint="A", axis="y").item()) == "quasi-periodic"
+    # an exponent within two standard errors of 0 decides nothing: K's vote stands
     flat = section_indicators(run, 10, exponent=1.0, stderr=5.0)
-    assert str(flat.verdict.sel(joint="A", axis="y").item()) == "quasi-periodic"
+    assert str(flat.verdict.sel(joint="A", axis="y").item()) == "chaotic"
 
 
 def test_too_few_section_points_fail_before_any_test():

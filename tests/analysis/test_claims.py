@@ -1,6 +1,7 @@
 """The landing page's judges (sim.claims) on synthetic tables of the peaks studies."""
 
 import pandas as pd
+import pytest
 from test_verdicts import ensemble
 
 from sim.analysis.revolutions import Bootstrap
@@ -212,3 +213,30 @@ def test_flagship_chaos_leads_with_the_model_exponent_over_members(tmp_path):
     claims, _ = judge_all(inputs, BOOT)
     evidence = next(r for r in claims if r["claim"].startswith("At 0.5 mm"))["evidence"]
     assert "118 ± 6.2 1/s (one member: no interval over members" in evidence
+
+
+@pytest.mark.parametrize(
+    ("a_x", "expected"),
+    [("chaotic", SUPPORTED), ("undecided", UNDECIDED), ("quasi-periodic", "mixed")],
+)
+def test_flagship_chaos_reads_the_channel_verdicts(tmp_path, a_x, expected):
+    """The claim follows each channel's verdict, not the sign of its time-series exponent:
+    A x at −0.83 1/s with a chaotic verdict supports it; an undecided A x leaves the claim
+    undecided; a quasi-periodic A x beside chaotic A y and B x makes it mixed."""
+    import numpy as np
+    import xarray as xr
+
+    path = tmp_path / "analysis.nc"
+    xr.Dataset(
+        {
+            "lyapunov_exponent": ("channel", [-0.83, 60.0, 40.0, -5.0]),
+            "verdict": ("channel", [a_x, "chaotic", "chaotic", "periodic"]),
+            "section_period": ("channel", [0, 0, 0, 1]),
+        },
+        coords={"channel": ["A.x", "A.y", "B.x", "B.y"], "revolution": np.arange(180)},
+        attrs={"transient_revolutions": 20},
+    ).to_netcdf(path)
+    claims, _ = judge_all({"flagship_analysis": str(path)}, BOOT)
+    row = next(r for r in claims if r["claim"].startswith("At 0.5 mm"))
+    assert row["verdict"] == expected
+    assert f"A.x: λ = -0.83 1/s ({a_x}, section period 0)" in row["evidence"]
