@@ -9,6 +9,7 @@ import xarray as xr
 from sim.analysis.bifurcation import combine_sweep
 from sim.analysis.run import analyze_run
 from sim.cli.analyze import register
+from sim.studies.model_lyapunov import DEFAULT_TOLERANCES
 
 TRANSIENT = 20
 
@@ -126,4 +127,4 @@ def test_simulated_ideal_sixbar_is_periodic(sixbar_ideal_file, tmp_path):
         stderr = float(analysis["model_lyapunov_stderr"])
         assert exponent + 3 * stderr < 0
         assert abs(exponent - (-10.0 + np.log(6.0) / 10.0)) < 0.01
-        assert analysis.attrs["model_lyapunov_rtol"] == 1e-8
+        assert analysis.attrs["model_lyapunov_rtol"] == DEFAULT_TOLERANCES[0]
