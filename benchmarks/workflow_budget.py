@@ -20,7 +20,8 @@ Two modes:
   statistics' transient (it needs the optional Exudyn extra; ~10 min, config/config.yaml).
 
 The full run's wall time on two cores is the sum divided by the throughput two concurrent jobs
-get on the machine (1.2-1.25 x on the shared 2-core machine: docs/performance.md).
+get on the machine (1.9-2.0 x on an idle 2-core machine: docs/performance.md, "Batched runs and
+dense sweeps").
 
 Usage:
   python benchmarks/workflow_budget.py [--configfile config/rigid.yaml] [--every 20]

@@ -22,7 +22,7 @@ doing so for the point kinematics and clearance helpers once `System` gained the
 fields: rigid runs became 1.3 × slower. So what one right-hand side evaluation calls (its
 forces, constraint terms and accelerations, down to the point kinematics) is inlined by
 numba, whatever LLVM would decide; measured on the rigid flagship (docs/performance.md,
-"Inlining the evaluation"), 2.77 → 1.60 s for 20 revolutions, results bit for bit the same.
+"Decisions kept"), 2.77 → 1.60 s for 20 revolutions, results bit for bit the same.
 `rhs` itself is not inlined: its six calls per Runge–Kutta step would compile six copies.
 
 Kernels release the GIL (``nogil``): they touch only the arrays passed to them, so threads

@@ -22,7 +22,7 @@ The `*_rotated` forms take the owning body's (cos θ, sin θ) from `point_rotati
 `body_rotation` where the tree of minimal coordinates has computed them already, so that a
 caller that needs one point's position, velocity and force computes them once: a clearance
 joint's contact force took them up to eight times an evaluation, and cos and sin take about a
-fifth of the rigid core's integration time (perf, 2026-11-26; docs/performance.md).
+fifth of the rigid core's integration time (perf; docs/performance.md).
 """
 
 import numpy as np

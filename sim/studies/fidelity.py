@@ -1,4 +1,4 @@
-"""Accuracy of one run against a reference run of the same scene (work–precision, issue 6).
+"""Accuracy of one run against a reference run of the same scene (work–precision).
 
 Two horizons, because the flagship motion is chaotic:
 

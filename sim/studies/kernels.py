@@ -3,8 +3,8 @@
 numba compiles a kernel on its first call and keeps it in the on-disk cache (:mod:`sim.jit`),
 so in a fresh environment the first runs pay the compile: about four minutes for each method's
 integration loop on this project's reference machine. Two processes that start at once both
-compile, and the workflow starts two at once: in the full run from an empty cache of
-2026-11-26 the first two runs (both DOPRI5) each spent ~4.5 min compiling, and the next two
+compile, and the workflow starts two at once: in a full run from an empty cache without
+this rule the first two runs (both DOPRI5) each spent ~4.5 min compiling, and the next two
 (both generalized-α) ~3.5 min. The workflow's rule ``compile_kernels`` runs
 :func:`compile_kernels` once per method before any run of that method, so each method is
 compiled once, the two methods side by side.

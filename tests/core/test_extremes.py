@@ -7,8 +7,8 @@ Bounds, from what the quantities mean rather than from the measured values:
 - constraint violation below 1 % of the case's smallest clearance (10 nm for the 1 µm case):
   drift of the ideal joints must not compete with the clearance being modelled;
 - energy audit below 1e-3 of the energy scale: the bound under which the default fidelity
-  (rtol 1e-5) was chosen (README, "Default fidelity": 4.7e-4 over the 200-revolution
-  flagship); test_energy.py holds the audit itself to 1e-4 at rtol 1e-6.
+  (rtol 1e-5) was chosen (docs/fidelity.md, "The default tolerance": 4.7e-4 over the
+  200-revolution flagship); test_energy.py holds the audit itself to 1e-4 at rtol 1e-6.
 Measured at these durations and the default rtol 1e-5: violation ≤ 3e-8 m (600 rpm, 6e-5 of
 its 0.5 mm clearance; 7e-10 m at rtol 1e-6), audit ≤ 1.1e-4 (rigid), ≤ 1e-10 (beams).
 """
