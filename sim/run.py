@@ -16,7 +16,8 @@ import xarray as xr
 from sim.ensemble import Member, perturbed
 from sim.model.assembly import Layout, build_system, crank_period, omega
 from sim.model.continuation import State, continued_state
-from sim.model.initial import initial_state
+from sim.model.initial import HINTED, assemble, initial_state
+from sim.model.mobility import check_full_turn
 from sim.model.system import (
     OUT_NORMAL_FORCE,
     SLIDER_LAW_PAPER,
@@ -85,6 +86,7 @@ class Integration:
     options: Options
     buffers: Buffers
     tally: np.ndarray  # (1,) TALLY
+    assembly_branch: str  # which assembly branch the initial state is on (Assembly.branch)
 
     @property
     def y(self) -> np.ndarray:
@@ -162,12 +164,16 @@ def prepare(
     the assembled one, or with `start` the end of a previous run projected onto this scene
     (sim.model.continuation; ContinuationError when it cannot be)."""
     system, layout = build_system(scene, ideal=ideal, rigid=rigid)
-    q0, qd0 = initial_state(scene, system, layout)
+    assembly = assemble(scene)
+    period = crank_period(scene)
+    check_full_turn(
+        assembly.system, assembly.layout, assembly.q, period, scene["drive"]["initial_angle_deg"]
+    )
+    q0, qd0 = initial_state(scene, system, layout, assembly)
     mem = np.zeros((n_gaps(system), 3))
     if start is not None:
         q0, qd0, mem = continued_state(start, system, layout, q0, omega(scene))
     y = np.concatenate([q0, qd0, [0.0, 0.0]])
-    period = crank_period(scene)
     n_rev = scene["simulation"]["revolutions"] if revolutions is None else revolutions
     per_rev = scene["simulation"]["output_per_revolution"]
     n_out = math.floor(n_rev * per_rev + 1e-9) + 1
@@ -213,6 +219,7 @@ def prepare(
         options=options,
         buffers=buffers,
         tally=np.zeros(1, dtype=TALLY),
+        assembly_branch=assembly.branch,
     )
     # The integrator samples times in (t, t + h]; t = 0 is recorded here.
     assert state_size(system) == y.size
@@ -422,6 +429,8 @@ class Run:
         self.integ = prepare(
             self.scene, ideal=ideal, rigid=rigid, revolutions=revolutions, start=start
         )
+        if progress and self.integ.assembly_branch != HINTED:
+            print(f"assembly: {self.integ.assembly_branch}", file=sys.stderr)
         self.period = crank_period(self.scene)
         self.revolutions = (
             self.scene["simulation"]["revolutions"] if revolutions is None else revolutions
@@ -483,6 +492,7 @@ class Run:
             "real_time_factor": self.t_end / self.wall if self.wall > 0 else float("inf"),
             "simulated_time_s": self.t_end,
             "initial_state": "assembled" if self.start is None else "continued",
+            "assembly_branch": integ.assembly_branch,
             **self.member.attrs(),
         }
         n = integ.system.n

@@ -134,11 +134,13 @@ BODY_COMMON = {
         choices=("bar", "block"),
     ),
     "material": Field("str", doc="a name in `materials`"),
-    "hint": Field(
+    "hint": _opt(
         "mapping",
-        doc="pose guess for the assembly at the initial crank angle "
-        "(table `bodies.<name>.hint`); the assembly closes every loop from it, so it "
-        "picks the assembly branch",
+        None,
+        "pose guess for the assembly at the initial crank angle (table "
+        "`bodies.<name>.hint`): the assembly closes every loop from it, so it picks the "
+        "assembly branch; null: the assembly searches, takes the first branch it finds and "
+        "says which (output attribute `assembly_branch`); a welded body needs one",
     ),
     "mass": _num(
         0.0,
@@ -903,7 +905,8 @@ def _check_body(name: str, body: Any, materials: dict, problems: list[Problem]) 
     shape = body.get("shape")
     if _check_section(body, BLOCK if shape == "block" else BAR, where, problems):
         _check_name(body["material"], materials, f"{where}.material", "material", problems)
-        _check_section(body["hint"], HINT, f"{where}.hint", problems)
+        if body["hint"] is not None:
+            _check_section(body["hint"], HINT, f"{where}.hint", problems)
         if body["kind"] in ("beam", "modal") and shape != "bar":
             problems.append(
                 Problem(f"{where}.kind", f"'{where}.kind' = '{body['kind']}' needs shape 'bar'")
@@ -991,6 +994,15 @@ def _check_joint(
             )
         if any(b != GROUND and bodies[b]["kind"] != "rigid" for b in pair):
             problems.append(Problem(f"{where}.bodies", f"'{where}' welds rigid bodies only"))
+        for b in pair:
+            if b != GROUND and bodies[b]["hint"] is None:
+                problems.append(
+                    Problem(
+                        f"bodies.{b}.hint",
+                        f"'{where}' (a weld) needs 'bodies.{b}.hint': the weld holds the "
+                        "angle of the hints",
+                    )
+                )
     elif joint["clearance"] >= joint["bearing_radius"]:
         problems.append(
             Problem(

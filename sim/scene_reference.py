@@ -25,6 +25,12 @@ A scene is a YAML file describing one planar linkage and how to simulate it. Loa
   is a default below);
 - `slider-crank`: an offset-free slider-crank (crank 0.05 m, rod 0.20 m) used by the tests.
 
+A body's `hint` (a guess of its pose at the initial crank angle) picks the assembly branch;
+without hints the assembly searches, takes the first branch it finds and says which (a line
+on the terminal, the output attribute `assembly_branch`). Before integrating, the ideal
+linkage is driven through a full crank turn on that branch; a linkage that locks is refused
+with the crank angle and the loop where it locks.
+
 `sim scene <name or file>` prints a scene resolved, every default filled in. A file may start
 from another scene with `base: <name or file>` and list only what it changes; in `materials`,
 `ground`, `bodies` and `joints` a `null` entry removes the inherited one
