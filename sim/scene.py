@@ -19,7 +19,7 @@ from collections.abc import Iterable, Sequence
 from dataclasses import dataclass, replace
 from importlib import resources
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 import yaml
 
@@ -108,6 +108,13 @@ TOP = {
     "contact": _opt("mapping", {}, "contact law of every clearance joint (table `contact`)"),
     "simulation": _opt("mapping", {}, "duration and output (table `simulation`)"),
     "solver": _opt("mapping", {}, "integrator settings (table `solver`)"),
+    "output": _opt(
+        "mapping",
+        None,
+        "the channel the analyses read (responses, peaks, per-revolution tables; table "
+        "`output`); null: the body named `slider` along y, the six-bar's slider along its "
+        "guide, which a scene without such a body replaces",
+    ),
 }
 MATERIAL = {
     "youngs_modulus": _num(1e6, 1e15, "Pa", open_min=True, doc="Young's modulus E"),
@@ -413,6 +420,20 @@ SOLVER = {
     ),
 }
 
+OUTPUT = {
+    "body": Field("str", doc="the body whose motion the analyses read"),
+    "point": _opt(
+        "str",
+        "centre",
+        "its point: the reference point, whose position, velocity and acceleration every run "
+        "records",
+        choices=("centre",),
+    ),
+    "axis": _opt("str", "y", "the global component read", choices=("x", "y")),
+}
+#: the output channel of a scene without `output`: the six-bar's slider along its guide
+SLIDER_OUTPUT = {"body": "slider", "point": "centre", "axis": "y"}
+
 #: Every table of keys, by the place its keys take in a scene (for the reference page).
 TABLES: dict[str, dict[str, Field]] = {
     "scene": TOP,
@@ -428,6 +449,7 @@ TABLES: dict[str, dict[str, Field]] = {
     "contact": CONTACT,
     "simulation": SIMULATION,
     "solver": SOLVER,
+    "output": OUTPUT,
 }
 
 
@@ -668,6 +690,7 @@ def with_defaults(scene: dict) -> dict:
             if isinstance(entry, dict):
                 _fill(entry, spec(entry) or {})
     for key, spec in (
+        ("output", OUTPUT),
         ("drive", DRIVE),
         ("contact", CONTACT),
         ("simulation", SIMULATION),
@@ -712,6 +735,26 @@ def load_scene(name_or_path: str, overrides: Sequence[str] = ()) -> dict:
     problems += override_problems + scene_problems(scene)
     _raise(problems, source, overrides)
     return scene
+
+
+class OutputChannel(NamedTuple):
+    """The channel the analyses read: a body, its point and a global axis (x or y)."""
+
+    body: str
+    point: str
+    axis: str
+
+
+def output_channel(scene: dict) -> OutputChannel:
+    """The output channel of a resolved scene (`output`, or the body named `slider` along y);
+    ValueError naming the key when the scene gives none and has no slider."""
+    output = scene.get("output") or SLIDER_OUTPUT
+    if output["body"] not in scene["bodies"]:
+        raise ValueError(
+            f"scene '{scene['name']}' names no output channel and has no body 'slider': give "
+            "output: {body: <name>, axis: x or y}, the channel the analyses read"
+        )
+    return OutputChannel(output["body"], output["point"], output["axis"])
 
 
 def dump_scene(scene: dict) -> str:
@@ -890,6 +933,9 @@ def scene_problems(scene: dict) -> list[Problem]:
                 f"'contact.v1' = {contact['v1']!r} must exceed 'contact.v0' = {contact['v0']!r}",
             )
         )
+    output = scene.get("output")
+    if output is not None and _check_section(output, OUTPUT, "output", problems):
+        _check_name(output["body"], bodies, "output.body", "body", problems)
     _check_section(scene.get("simulation", {}), SIMULATION, "simulation", problems)
     _check_section(scene.get("solver", {}), SOLVER, "solver", problems)
     return problems

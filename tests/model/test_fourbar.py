@@ -2,10 +2,22 @@
 simulation or solver block) loads with the defaults and its ideal, rigid motion follows the
 closed-form position analysis of a four-bar (Freudenstein's equation)."""
 
-import numpy as np
+import re
 
+import numpy as np
+import pytest
+
+from sim.analysis.revolutions import SLIDER_ACCELERATION, revolution_table
 from sim.run import simulate
-from sim.scene import CONTACT, SIMULATION, SOLVER, load_scene, parse_yaml
+from sim.scene import (
+    CONTACT,
+    SIMULATION,
+    SOLVER,
+    SceneError,
+    load_scene,
+    output_channel,
+    parse_yaml,
+)
 
 # Crank a, coupler b, rocker c, ground pivots d apart: sim/scenes/fourbar.yaml.
 A, B, C, D = 0.10, 0.35, 0.30, 0.40
@@ -74,3 +86,18 @@ def test_a_minimal_four_bar_runs_and_follows_the_closed_form(tmp_path):
     # default) under Baumgarte stabilization: 3.3e-7 rad on the 0.3 m rocker, here with a
     # factor 3 of room. Measured: 2e-11 rad.
     assert error.max() < 1e-6, error.max()
+
+
+def test_the_analyses_read_the_scenes_output_channel():
+    # The six-bar's channel is its slider along the guide (no `output` key); the four-bar
+    # names its rocker; a scene with neither is told to name one.
+    assert output_channel(load_scene("sixbar")) == ("slider", "centre", "y")
+    assert output_channel(load_scene("fourbar")) == ("rocker", "centre", "y")
+    with pytest.raises(ValueError, match=re.escape("give output: {body: <name>, axis: x or y}")):
+        output_channel(load_scene("fourbar", ["output=null"]))
+    with pytest.raises(SceneError, match=re.escape("'output.body' names unknown body 'rod9'")):
+        load_scene("fourbar", ["output.body=rod9"])
+    run = simulate(load_scene("fourbar"), ideal=True, rigid=True, revolutions=2.0)
+    table = revolution_table(run, "nominal", transient=0)
+    expected = run.revolution_peak_acceleration.sel(body="rocker", axis="y").values[1:]
+    np.testing.assert_array_equal(table[SLIDER_ACCELERATION].values, expected)
