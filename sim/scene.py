@@ -564,16 +564,12 @@ def _inherit(base: dict, changes: dict, problems: list[Problem]) -> dict:
     out = copy.deepcopy(base)
     for key, value in changes.items():
         inherited = out.get(key)
-        if key not in COLLECTIONS or not isinstance(value, dict) or not isinstance(inherited, dict):
-            out[key] = (
-                deep_merge(inherited, value)
-                if isinstance(value, dict) and isinstance(inherited, dict)
-                else copy.deepcopy(value)
-            )
+        if key not in COLLECTIONS or not (isinstance(value, dict) and isinstance(inherited, dict)):
+            out = deep_merge(out, {key: value})
             continue
+        kind = _KIND_KEY.get(key)
         for name, entry in value.items():
             old = inherited.get(name)
-            kind = _KIND_KEY.get(key)
             if entry is None:
                 if name in inherited:
                     del inherited[name]
@@ -603,7 +599,7 @@ def _override_paths(overrides: Iterable[str]) -> list[tuple[str, tuple[str, ...]
     ]
 
 
-def _apply_overrides(scene: dict, overrides: Iterable[str]) -> tuple[dict, list[Problem]]:
+def apply_overrides(scene: dict, overrides: Iterable[str]) -> tuple[dict, list[Problem]]:
     """A copy of `scene` with each 'dotted.key=value' applied (value parsed as YAML), and the
     overrides that cannot apply (they are reported as `--set` problems)."""
     out = copy.deepcopy(scene)
@@ -634,14 +630,6 @@ def _apply_overrides(scene: dict, overrides: Iterable[str]) -> tuple[dict, list[
         else:
             node[parts[-1]] = value
     return out, problems
-
-
-def apply_overrides(scene: dict, overrides: Iterable[str]) -> dict:
-    """A copy of `scene` with each 'dotted.key=value' applied (value parsed as YAML);
-    SceneError naming every override that cannot apply."""
-    out, problems = _apply_overrides(scene, overrides)
-    _raise(problems, "", list(overrides))
-    return out
 
 
 def _origin(problem: Problem, source: str, overrides: Sequence[str]) -> str:
@@ -730,7 +718,7 @@ def load_scene(name_or_path: str, overrides: Sequence[str] = ()) -> dict:
     every problem at once, each named by its origin: the file or a `--set`."""
     problems: list[Problem] = []
     raw, source = _read_raw(name_or_path, (name_or_path,), problems)
-    scene, override_problems = _apply_overrides(with_defaults(raw), overrides)
+    scene, override_problems = apply_overrides(with_defaults(raw), overrides)
     scene = with_defaults(scene)
     problems += override_problems + scene_problems(scene)
     _raise(problems, source, overrides)
@@ -887,12 +875,6 @@ def _mapping(scene: dict, key: str) -> dict:
     """scene[key] when it is a mapping, else {} (its problem is reported by the top check)."""
     value = scene.get(key)
     return value if isinstance(value, dict) else {}
-
-
-def validate_scene(scene: dict, source: str = "<scene>") -> None:
-    """Raise SceneError listing every problem of a resolved scene (defaults filled by
-    `with_defaults`)."""
-    _raise(scene_problems(scene), source, ())
 
 
 def scene_problems(scene: dict) -> list[Problem]:
