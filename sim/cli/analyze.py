@@ -9,7 +9,7 @@ import xarray as xr
 
 from sim.analysis.run import MIN_REVOLUTIONS, analyze_run
 from sim.cli.arguments import add_scene_arguments, check_output
-from sim.scene import Field, check_option
+from sim.scene_keys import Field, check_option
 
 #: default transient: this many revolutions, or a quarter of the run if that is fewer
 DEFAULT_TRANSIENT_REVOLUTIONS = 20

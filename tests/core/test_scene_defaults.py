@@ -1,4 +1,4 @@
-"""Loading returns a fully defaulted scene (sim/scene.py): every optional key with a default is
+"""Loading returns a fully defaulted scene (sim/scene_keys.py): every optional key with a default is
 filled in, the result loads again unchanged, and the defaults mean what docs say."""
 
 import json
@@ -9,15 +9,8 @@ import xarray as xr
 
 from sim.model.assembly import body_mass_properties
 from sim.results import scene_of
-from sim.scene import (
-    BODY_COMMON,
-    NO_DEFAULT,
-    TABLES,
-    TOP,
-    SceneError,
-    dump_scene,
-    load_scene,
-)
+from sim.scene import SceneError, dump_scene, load_scene
+from sim.scene_keys import BODY_COMMON, NO_DEFAULT, TABLES, TOP
 from sim.scene_reference import reference
 
 BEAMS = ["bodies.rod2.kind=beam", "bodies.rod3.kind=beam"]

@@ -9,15 +9,8 @@ import pytest
 
 from sim.analysis.revolutions import SLIDER_ACCELERATION, revolution_table
 from sim.run import simulate
-from sim.scene import (
-    CONTACT,
-    SIMULATION,
-    SOLVER,
-    SceneError,
-    load_scene,
-    output_channel,
-    parse_yaml,
-)
+from sim.scene import SceneError, load_scene, output_channel, parse_yaml
+from sim.scene_keys import CONTACT, SIMULATION, SOLVER
 
 # Crank a, coupler b, rocker c, ground pivots d apart: sim/scenes/fourbar.yaml.
 A, B, C, D = 0.10, 0.35, 0.30, 0.40
