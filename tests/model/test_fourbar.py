@@ -94,3 +94,14 @@ def test_the_analyses_read_the_scenes_output_channel():
     table = revolution_table(run, "nominal", transient=0)
     expected = run.revolution_peak_acceleration.sel(body="rocker", axis="y").values[1:]
     np.testing.assert_array_equal(table[SLIDER_ACCELERATION].values, expected)
+
+
+def test_the_built_in_four_bar_runs_with_its_clearance():
+    # One revolution with the 0.3 mm clearance at B and every default setting: the journal
+    # stays in its bearing (the Hertz penetration at the default contact law is far below 10 %
+    # of the clearance) and the energy audit within the bound of a sound run (1e-3).
+    run = simulate(load_scene("fourbar"), revolutions=1.0)
+    journal = np.hypot(*run.eccentricity.sel(joint="B").values.T)
+    assert np.isfinite(journal).all() and journal.max() < 1.1 * 0.3e-3
+    assert run.attrs["energy_error_relative"] < 1e-3
+    assert run.attrs["energy_audit_exceeded"] == 0
