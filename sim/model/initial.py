@@ -179,14 +179,17 @@ def _place(scene: dict, joint: dict, pose: dict, angles: dict) -> None:
         if pair[1] in angles and pair[1] not in pose:
             pose[pair[1]] = (np.array(joint["guide_point"]), math.radians(joint["guide_angle_deg"]))
         return
-    for (a, pa), (b, pb) in ((z := list(zip(pair, joint["points"], strict=True)))[0:2], z[::-1]):
+    ends = list(zip(pair, joint["points"], strict=True))
+    for (a, pa), (b, pb) in (ends, ends[::-1]):
         if b in angles and b not in pose and (a == GROUND or a in pose):
-            theta = angles[b]
-            rotation = np.array(
-                [[math.cos(theta), -math.sin(theta)], [math.sin(theta), math.cos(theta)]]
-            )
-            local = np.array(local_points(scene["bodies"][b])[pb])
-            pose[b] = (_world(scene, a, pa, pose) - rotation @ local, theta)
+            local = local_points(scene["bodies"][b])[pb]
+            pose[b] = (_world(scene, a, pa, pose) - _rotated(angles[b], local), angles[b])
+
+
+def _rotated(theta: float, point: tuple[float, float]) -> np.ndarray:
+    """`point` (m) turned by theta (rad)."""
+    c, s = math.cos(theta), math.sin(theta)
+    return np.array([c * point[0] - s * point[1], s * point[0] + c * point[1]])
 
 
 def _world(scene: dict, body: str, point: str, pose: dict) -> np.ndarray:
@@ -194,9 +197,7 @@ def _world(scene: dict, body: str, point: str, pose: dict) -> np.ndarray:
     if body == GROUND:
         return np.array(scene["ground"][point], dtype=float)
     position, theta = pose[body]
-    c, s = math.cos(theta), math.sin(theta)
-    x, y = local_points(scene["bodies"][body])[point]
-    return position + np.array([c * x - s * y, s * x + c * y])
+    return position + _rotated(theta, local_points(scene["bodies"][body])[point])
 
 
 def assemble(scene: dict) -> Assembly:
