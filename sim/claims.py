@@ -36,6 +36,8 @@ from sim.analysis.verdicts import (
     intervals_text,
     trend,
 )
+from sim.results import scene_of
+from sim.scene import output_channel
 
 Inputs = Mapping[str, str]
 
@@ -50,11 +52,13 @@ def _open(path) -> xr.Dataset:
 
 
 def _deviation(run: xr.Dataset, ideal: xr.Dataset, variable: str) -> float:
-    """Largest |run − ideal| over the ideal's range (after the first revolution)."""
+    """Largest |run − ideal| over the ideal's range (after the first revolution); of the
+    run's output channel (its scene's `output`) for a quantity of the bodies."""
     data, ref = run[variable], ideal[variable]
     if "body" in data.dims:
-        data = data.sel(body="slider", axis="y")
-        ref = ref.sel(body="slider", axis="y")
+        channel = output_channel(scene_of(run))
+        data = data.sel(body=channel.body, axis=channel.axis)
+        ref = ref.sel(body=channel.body, axis=channel.axis)
     start = float(run.attrs["crank_period"])
     data = data.sel(time=slice(start, None))
     ref = ref.interp(time=data.time)

@@ -14,9 +14,11 @@ import numpy as np
 import xarray as xr
 
 from sim.ensemble import Member, perturbed
+from sim.kernel_cache import compile_integrator
 from sim.model.assembly import Layout, build_system, crank_period, omega
 from sim.model.continuation import State, continued_state
-from sim.model.initial import initial_state
+from sim.model.initial import HINTED, assemble, initial_state
+from sim.model.mobility import check_full_turn
 from sim.model.system import (
     OUT_NORMAL_FORCE,
     SLIDER_LAW_PAPER,
@@ -53,6 +55,9 @@ VIOLATION_BOUND = 0.01  # of the shortest body dimension, m
 # 3.4e-2 in 10 revolutions), so reaching it means a step created or lost energy, e.g. a
 # contact force from a wrong velocity.
 ENERGY_BOUND = 0.5
+# The energy audit of a sound run (docs/fidelity.md, criterion 2 of the default fidelity): a run
+# above it finishes, but says so (summary of `sim run`, attribute energy_audit_exceeded).
+ENERGY_AUDIT_BOUND = 1e-3
 
 
 @dataclass(frozen=True)
@@ -85,6 +90,7 @@ class Integration:
     options: Options
     buffers: Buffers
     tally: np.ndarray  # (1,) TALLY
+    assembly_branch: str  # which assembly branch the initial state is on (Assembly.branch)
 
     @property
     def y(self) -> np.ndarray:
@@ -115,18 +121,22 @@ class Integration:
         """A counter of the run (a field of sim.solve.state.TALLY)."""
         return int(self.tally[0][name])
 
-    def advance(self, t_end: float) -> int:
-        """Integrate up to t_end; the status code (sim.solve.status) of the compiled integrator."""
-        return stepping.integrate(
+    def arguments(self, t_end: float) -> tuple:
+        """The arguments of the compiled integrator (`stepping.integrate`) up to t_end (s)."""
+        return (
             self.system,
             self.work,
             self.carry,
             self.trajectory,
-            t_end,
+            float(t_end),
             self.options,
             self.buffers,
             self.tally,
         )
+
+    def advance(self, t_end: float) -> int:
+        """Integrate up to t_end; the status code (sim.solve.status) of the compiled integrator."""
+        return stepping.integrate(*self.arguments(t_end))
 
     def clear_step_log(self) -> None:
         """Start a new log of accepted step ends (the run keeps one if prepared with
@@ -191,12 +201,16 @@ def prepare(
     (sim.model.continuation; ContinuationError when it cannot be). `step_log` > 0 keeps a log of
     that many accepted step ends for a lockstep follower (sim.solve.lockstep)."""
     system, layout = build_system(scene, ideal=ideal, rigid=rigid)
-    q0, qd0 = initial_state(scene, system, layout)
+    assembly = assemble(scene)
+    period = crank_period(scene)
+    check_full_turn(
+        assembly.system, assembly.layout, assembly.q, period, scene["drive"]["initial_angle_deg"]
+    )
+    q0, qd0 = initial_state(scene, system, layout, assembly)
     mem = np.zeros((n_gaps(system), 3))
     if start is not None:
         q0, qd0, mem = continued_state(start, system, layout, q0, omega(scene))
     y = np.concatenate([q0, qd0, [0.0, 0.0]])
-    period = crank_period(scene)
     n_rev = scene["simulation"]["revolutions"] if revolutions is None else revolutions
     per_rev = scene["simulation"]["output_per_revolution"]
     n_out = math.floor(n_rev * per_rev + 1e-9) + 1
@@ -243,6 +257,7 @@ def prepare(
         options=options,
         buffers=buffers,
         tally=np.zeros(1, dtype=TALLY),
+        assembly_branch=assembly.branch,
     )
     # The integrator samples times in (t, t + h]; t = 0 is recorded here.
     assert state_size(system) == y.size
@@ -458,6 +473,12 @@ class Run:
             start=start,
             step_log=step_log,
         )
+        if progress and self.integ.assembly_branch != HINTED:
+            print(f"assembly: {self.integ.assembly_branch}", file=sys.stderr)
+        # compiled before the clock starts: wall time and real-time factor are the integration's
+        self.compile_time = compile_integrator(
+            self.integ.arguments(0.0), self.scene["solver"]["method"]
+        )
         self.period = crank_period(self.scene)
         self.revolutions = (
             self.scene["simulation"]["revolutions"] if revolutions is None else revolutions
@@ -516,9 +537,11 @@ class Run:
             "solver_iteration_matrices": integ.count("jacobians"),
             "solver_newton_failures": integ.count("newton_failures"),
             "solver_wall_time_s": self.wall,
+            "solver_compile_time_s": self.compile_time,
             "real_time_factor": self.t_end / self.wall if self.wall > 0 else float("inf"),
             "simulated_time_s": self.t_end,
             "initial_state": "assembled" if self.start is None else "continued",
+            "assembly_branch": integ.assembly_branch,
             **self.member.attrs(),
         }
         n = integ.system.n
@@ -542,5 +565,9 @@ class Run:
             joints=integ.layout.clearance_joints,
             scene=scene,
             provenance=provenance,
+        )
+        dataset.attrs["energy_audit_bound"] = ENERGY_AUDIT_BOUND
+        dataset.attrs["energy_audit_exceeded"] = int(
+            dataset.attrs["energy_error_relative"] > ENERGY_AUDIT_BOUND
         )
         return dataset, final

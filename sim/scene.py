@@ -2,27 +2,47 @@
 
 A scene is a YAML mapping that describes one planar linkage and how to
 simulate it (see `sim/scenes/sixbar.yaml`). It is loaded by built-in name
-(`sixbar`, `slider-crank`) or by path. A file may start from a built-in scene
+(`sixbar`, `fourbar`, `slider-crank`) or by path. A file may start from a built-in scene
 with `base: <name>` and list only what it changes. `--set dotted.key=value`
 overrides any key; values are parsed as YAML scalars.
 
-Every default is declared here, in the tables of keys below (`Field.default`); loading
-fills them in, so the resolved scene has every key and no other module supplies a default.
-Validation runs before any computation and raises `SceneError` naming the
-source, the key, the offending value and what is accepted.
+What each key accepts, and its default, is declared in `sim.scene_keys`; loading fills the
+defaults in, so the resolved scene has every key. Validation runs before any computation and
+raises one `SceneError` listing every problem, each naming its origin (the file or the
+`--set`), the key, the offending value and what is accepted.
 """
 
 import copy
-import math
 import re
 from collections.abc import Iterable, Sequence
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from importlib import resources
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 import yaml
 
+from sim.scene_keys import (
+    BAR,
+    BLOCK,
+    BODY_COMMON,
+    CONTACT,
+    DAMPING,
+    DRIVE,
+    HINT,
+    MATERIAL,
+    NO_DEFAULT,
+    OUTPUT,
+    REVOLUTE,
+    SIMULATION,
+    SLIDER_OUTPUT,
+    SOLVER,
+    TOP,
+    TRANSLATIONAL,
+    WELD,
+    check_value,
+    describe,
+)
 from sim.yaml_keys import DuplicateKeyError, dotted, key_lines
 
 GROUND = "ground"
@@ -30,148 +50,6 @@ GROUND = "ground"
 
 class SceneError(ValueError):
     """A scene that cannot be used, with a message naming the source and key."""
-
-
-class _NoDefault:
-    """Marks a key without a default (None is a default: null, computed)."""
-
-    def __repr__(self) -> str:
-        return "NO_DEFAULT"
-
-
-NO_DEFAULT = _NoDefault()
-
-
-@dataclass(frozen=True)
-class Field:
-    """What one key accepts: a type, an optional numeric range (inclusive unless
-    `open_min`), or a fixed set of choices; `unit` is shown in messages. An optional key
-    (`required=False`) may have a `default`, which loading fills in; a default of None
-    accepts null, meaning "computed from the rest of the scene" (the comment beside the key
-    says how)."""
-
-    kind: str  # 'number', 'int', 'str', 'bool', 'vector2', 'vector3', 'list', 'mapping'
-    minimum: float | None = None
-    maximum: float | None = None
-    open_min: bool = False
-    choices: tuple[str, ...] = ()
-    unit: str = ""
-    required: bool = True
-    default: Any = NO_DEFAULT
-
-
-def _num(lo=None, hi=None, unit="", open_min=False, required=True, default=NO_DEFAULT) -> Field:
-    return Field("number", lo, hi, open_min, unit=unit, required=required, default=default)
-
-
-TOP = {
-    "name": Field("str"),
-    "description": Field("str", required=False, default=""),
-    "assumptions": Field("list", required=False, default=[]),
-    "base": Field("str", required=False),
-    "gravity": Field("vector2", -1e3, 1e3, unit="m/s^2"),
-    "materials": Field("mapping"),
-    "ground": Field("mapping"),
-    "bodies": Field("mapping"),
-    "joints": Field("mapping"),
-    "drive": Field("mapping", required=False),
-    "contact": Field("mapping"),
-    "simulation": Field("mapping"),
-    "solver": Field("mapping"),
-}
-MATERIAL = {
-    "youngs_modulus": _num(1e6, 1e15, "Pa", open_min=True),
-    "poisson": _num(0.0, 0.499),
-    "density": _num(1.0, 1e5, "kg/m^3"),
-}
-# The defaults are listed for users in README.md ("Scenes"); the ASSUMED ones also in
-# docs/assumptions.md.
-BODY_COMMON = {
-    "kind": Field("str", choices=("rigid", "beam", "modal")),
-    "shape": Field("str", choices=("bar", "block")),
-    "material": Field("str"),
-    "hint": Field("mapping"),
-    # null: ASSUMED uniform body, bar ρ A L, block ρ L W D (sim.model.assembly)
-    "mass": _num(0.0, 1e6, "kg", open_min=True, required=False, default=None),
-    # null: ASSUMED uniform body about its centre, bar m L²/12, block m (L² + W²)/12
-    "inertia": _num(0.0, 1e6, "kg m^2", open_min=True, required=False, default=None),
-    # named points beyond `centre` (and `start`, `end` of a bar); none on a beam
-    "points": Field("mapping", required=False, default={}),
-    # ASSUMED ANCF elements of a beam (the paper gives none); unused while rigid
-    "elements": Field("int", 1, 64, required=False, default=2),
-    # bending modes of a modal link (docs/model.md, "Modal links"): one is within 1.4 % of the
-    # ANCF beams' deflections on the six-bar at a quarter of the steps of three (0.7 %), whose
-    # higher frequencies DOPRI5 must resolve; at most 4 (sim.model.modal's tabulated modes)
-    "modes": Field("int", 1, 4, required=False, default=1),
-    # free–free axial modes of a modal link after its bending modes (docs/model.md, "Modal
-    # links"); 0 keeps the link axially rigid, whose 5.7-8.6 kHz axial ringing DOPRI5 cannot afford;
-    # the peaks need them (docs/fidelity.md, "Modal links"); at most 3 (sim.model.modal)
-    "axial_modes": Field("int", 0, 3, required=False, default=0),
-    # none, as in the paper
-    "damping": Field("mapping", required=False, default={"kind": "none"}),
-}
-BAR = {
-    **BODY_COMMON,
-    "length": _num(0.0, 100.0, "m", open_min=True),
-    "section": Field("vector2", 0.0, 10.0, open_min=True, unit="m"),
-}
-BLOCK = {**BODY_COMMON, "size": Field("vector3", 0.0, 10.0, open_min=True, unit="m")}
-HINT = {"position": Field("vector2", -1e3, 1e3, unit="m"), "angle_deg": _num(-720, 720, "deg")}
-DAMPING = {
-    "kind": Field("str", choices=("none", "stiffness", "modal")),
-    "coefficient": _num(0.0, 1.0, "s", required=False),
-    "ratio": _num(0.0, 1.0, required=False),
-}
-JOINT_COMMON = {
-    "type": Field("str", choices=("revolute", "translational", "weld")),
-    "bodies": Field("list"),
-    "clearance": _num(0.0, 0.01, "m"),
-}
-REVOLUTE = {
-    **JOINT_COMMON,
-    "points": Field("list"),
-    "bearing_radius": _num(0.0, 1.0, "m", open_min=True),
-}
-WELD = {**JOINT_COMMON, "points": Field("list")}
-TRANSLATIONAL = {
-    **JOINT_COMMON,
-    "guide_point": Field("vector2", -1e3, 1e3, unit="m"),
-    "guide_angle_deg": _num(-360, 360, "deg"),
-}
-DRIVE = {
-    "body": Field("str"),
-    "speed_rpm": _num(0.0, 1e5, "rpm", open_min=True),
-    "initial_angle_deg": _num(-360, 360, "deg"),
-}
-CONTACT = {
-    "restitution": _num(0.0, 1.0, open_min=True),
-    "friction": _num(0.0, 2.0),
-    "v0": _num(0.0, 1.0, "m/s", open_min=True),
-    "v1": _num(0.0, 10.0, "m/s", open_min=True),
-    "exponent": _num(1.0, 3.0),
-    "corner_radius": _num(0.0, 1.0, "m", open_min=True),
-    "min_impact_speed": _num(0.0, 1.0, "m/s", open_min=True),
-    "slider_law": Field("str", choices=("winkler", "paper")),
-}
-SIMULATION = {
-    "revolutions": _num(0.0, 1e6, "revolutions", open_min=True),
-    "output_per_revolution": Field("int", 1, 1_000_000),
-    "beam_start": Field("str", choices=("quasi-static", "straight")),
-}
-SOLVER = {
-    "method": Field("str", choices=("dopri5", "generalized_alpha")),
-    "rho_inf": _num(0.0, 1.0),
-    "rtol": _num(1e-13, 1e-1),
-    "atol": _num(1e-16, 1e-1),
-    "max_step_fraction": _num(1e-7, 1.0, "crank periods", open_min=True),
-    "baumgarte_alpha": _num(0.0, 1e4, "1/s"),
-    "baumgarte_beta": _num(0.0, 1e4, "1/s"),
-    "max_steps": Field("int", 1, 10**12),
-    # minimal: a mechanism of rigid bodies and modal links whose ideal joints form a tree
-    # integrates its joint angles and modal amplitudes (sim.model.tree; DOPRI5 only);
-    # absolute: always coordinates under multipliers
-    "coordinates": Field("str", choices=("minimal", "absolute"), required=False, default="minimal"),
-}
 
 
 # ---------------------------------------------------------------- loading
@@ -250,6 +128,23 @@ def _read_source(name_or_path: str) -> tuple[dict, str]:
     return _read_yaml(text, f"'{name_or_path}' (built-in)"), f"'{name_or_path}' (built-in)"
 
 
+# Named collections of a scene: in a file with `base:`, `<collection>.<name>: null` removes
+# the inherited entry.
+COLLECTIONS = ("materials", "ground", "bodies", "joints")
+# The key whose change makes an entry of another kind: an inherited entry whose value differs
+# is replaced whole, never merged into a hybrid (a revolute joint with a guide's keys).
+_KIND_KEY = {"bodies": "shape", "joints": "type"}
+
+
+@dataclass(frozen=True)
+class Problem:
+    """One thing wrong with a scene: the dotted key it is about and the message, which names
+    the key and what is accepted."""
+
+    key: str
+    text: str
+
+
 def deep_merge(base: dict, changes: dict) -> dict:
     """A copy of `base` with `changes` merged in, mappings key by key."""
     out = copy.deepcopy(base)
@@ -261,12 +156,57 @@ def deep_merge(base: dict, changes: dict) -> dict:
     return out
 
 
-def apply_overrides(scene: dict, overrides: Iterable[str], source: str = "--set") -> dict:
-    """A copy of `scene` with each 'dotted.key=value' applied (value parsed as YAML)."""
+def _inherit(base: dict, changes: dict, problems: list[Problem]) -> dict:
+    """`base` with a file's `changes` merged in: in the named collections a null entry removes
+    the inherited one, and an entry of another kind (a joint's `type`, a body's `shape`)
+    replaces it whole; everything else merges key by key (`deep_merge`)."""
+    out = copy.deepcopy(base)
+    for key, value in changes.items():
+        inherited = out.get(key)
+        if key not in COLLECTIONS or not (isinstance(value, dict) and isinstance(inherited, dict)):
+            out = deep_merge(out, {key: value})
+            continue
+        kind = _KIND_KEY.get(key)
+        for name, entry in value.items():
+            old = inherited.get(name)
+            if entry is None:
+                if name in inherited:
+                    del inherited[name]
+                else:
+                    problems.append(
+                        Problem(
+                            f"{key}.{name}",
+                            f"'{key}.{name}: null' removes an inherited entry, but the base has "
+                            f"none named '{name}'; inherited: {', '.join(inherited)}",
+                        )
+                    )
+            elif (
+                isinstance(entry, dict)
+                and isinstance(old, dict)
+                and not (kind and kind in entry and entry[kind] != old.get(kind))
+            ):
+                inherited[name] = deep_merge(old, entry)
+            else:
+                inherited[name] = copy.deepcopy(entry)
+    return out
+
+
+def _override_paths(overrides: Iterable[str]) -> list[tuple[str, tuple[str, ...]]]:
+    """Each well-formed 'dotted.key=value' with its key path."""
+    return [
+        (item, tuple(item.split("=", 1)[0].strip().split("."))) for item in overrides if "=" in item
+    ]
+
+
+def apply_overrides(scene: dict, overrides: Iterable[str]) -> tuple[dict, list[Problem]]:
+    """A copy of `scene` with each 'dotted.key=value' applied (value parsed as YAML), and the
+    overrides that cannot apply (they are reported as `--set` problems)."""
     out = copy.deepcopy(scene)
+    problems = []
     for item in overrides:
         if "=" not in item:
-            raise SceneError(f"{source} '{item}': expected dotted.key=value")
+            problems.append(Problem(f"--set {item}", "expected dotted.key=value"))
+            continue
         key, text = item.split("=", 1)
         parts = key.strip().split(".")
         try:
@@ -278,13 +218,42 @@ def apply_overrides(scene: dict, overrides: Iterable[str], source: str = "--set"
             if not isinstance(node.get(part), dict):
                 known = ", ".join(sorted(node)) if isinstance(node, dict) else ""
                 where = ".".join(parts[: depth + 1])
-                raise SceneError(
-                    f"{source} '{item}': there is no section '{where}' in the scene; "
-                    f"accepted here: {known}"
+                problems.append(
+                    Problem(
+                        key.strip(),
+                        f"there is no section '{where}' in the scene; accepted here: {known}",
+                    )
                 )
+                break
             node = node[part]
-        node[parts[-1]] = value
-    return out
+        else:
+            node[parts[-1]] = value
+    return out, problems
+
+
+def _origin(problem: Problem, source: str, overrides: Sequence[str]) -> str:
+    """Who wrote the key of `problem`: the `--set` override whose key it is (or lies inside,
+    or holds), else the scene file."""
+    if problem.key.startswith("--set "):
+        return f"--set '{problem.key[6:]}'"
+    key = tuple(re.sub(r"\[\d+\]", "", problem.key.removeprefix("scene.")).split("."))
+    for item, path in _override_paths(overrides):
+        common = min(len(key), len(path))
+        if key[:common] == path[:common]:
+            return f"--set '{item}'"
+    return f"scene {source}"
+
+
+def _raise(problems: list[Problem], source: str, overrides: Sequence[str]) -> None:
+    """SceneError listing every problem, each with its origin (the file or a `--set`)."""
+    if not problems:
+        return
+    lines = [f"{_origin(p, source, overrides)}: {p.text}" for p in problems]
+    if len(lines) == 1:
+        raise SceneError(lines[0])
+    raise SceneError(
+        f"{len(lines)} problems, all reported here:\n" + "\n".join(f"  - {x}" for x in lines)
+    )
 
 
 def _fill(data: Any, spec: dict) -> None:
@@ -298,16 +267,45 @@ def _fill(data: Any, spec: dict) -> None:
 
 def with_defaults(scene: dict) -> dict:
     """A copy of `scene` with every optional key that has a default filled in (the defaults
-    of the tables above; README.md lists them). Safe on a scene that still has errors
+    of the tables above; docs/scenes.md lists them). Safe on a scene that still has errors
     and on one already filled: it only adds keys that are missing."""
     out = copy.deepcopy(scene)
     _fill(out, TOP)
-    bodies = out.get("bodies")
-    for body in bodies.values() if isinstance(bodies, dict) else ():
-        if isinstance(body, dict):
-            _fill(body, BODY_COMMON)
-    _fill(out.get("solver"), SOLVER)
+    for collection, spec in (("bodies", lambda b: BODY_COMMON), ("joints", _joint_table)):
+        entries = out.get(collection)
+        for entry in entries.values() if isinstance(entries, dict) else ():
+            if isinstance(entry, dict):
+                _fill(entry, spec(entry) or {})
+    for key, spec in (
+        ("output", OUTPUT),
+        ("drive", DRIVE),
+        ("contact", CONTACT),
+        ("simulation", SIMULATION),
+        ("solver", SOLVER),
+    ):
+        _fill(out.get(key), spec)
     return out
+
+
+def _joint_table(joint: dict) -> dict | None:
+    """The table of keys of a joint's type (None for an unknown type)."""
+    return {"revolute": REVOLUTE, "translational": TRANSLATIONAL, "weld": WELD}.get(
+        joint.get("type")
+    )
+
+
+def _read_raw(
+    name_or_path: str, chain: tuple[str, ...], problems: list[Problem]
+) -> tuple[dict, str]:
+    """The mapping of a scene with its `base` (and the base's base) merged in."""
+    raw, source = _read_source(name_or_path)
+    if "base" not in raw:
+        return raw, source
+    base = str(raw["base"])
+    if base in chain:
+        raise SceneError(f"scene {source}: 'base' = '{base}' starts a cycle of bases")
+    base_raw, _ = _read_raw(base, (*chain, base), problems)
+    return _inherit(base_raw, {k: v for k, v in raw.items() if k != "base"}, problems), source
 
 
 def load_scene(name_or_path: str, overrides: Sequence[str] = ()) -> dict:
@@ -315,14 +313,35 @@ def load_scene(name_or_path: str, overrides: Sequence[str] = ()) -> dict:
 
     Returns the resolved scene: a plain mapping with every key present, defaults filled in
     (before the overrides, so that they can set keys inside a default such as
-    `bodies.<name>.damping.kind`, and after, for what the overrides add)."""
-    raw, source = _read_source(name_or_path)
-    if "base" in raw:
-        base_raw, _ = _read_source(str(raw["base"]))
-        raw = deep_merge(base_raw, {k: v for k, v in raw.items() if k != "base"})
-    scene = with_defaults(apply_overrides(with_defaults(raw), overrides))
-    validate_scene(scene, source)
+    `bodies.<name>.damping.kind`, and after, for what the overrides add). SceneError lists
+    every problem at once, each named by its origin: the file or a `--set`."""
+    problems: list[Problem] = []
+    raw, source = _read_raw(name_or_path, (name_or_path,), problems)
+    scene, override_problems = apply_overrides(with_defaults(raw), overrides)
+    scene = with_defaults(scene)
+    problems += override_problems + scene_problems(scene)
+    _raise(problems, source, overrides)
     return scene
+
+
+class OutputChannel(NamedTuple):
+    """The channel the analyses read: a body, its point and a global axis (x or y)."""
+
+    body: str
+    point: str
+    axis: str
+
+
+def output_channel(scene: dict) -> OutputChannel:
+    """The output channel of a resolved scene (`output`, or the body named `slider` along y);
+    ValueError naming the key when the scene gives none and has no slider."""
+    output = scene.get("output") or SLIDER_OUTPUT
+    if output["body"] not in scene["bodies"]:
+        raise ValueError(
+            f"scene '{scene['name']}' names no output channel and has no body 'slider': give "
+            "output: {body: <name>, axis: x or y}, the channel the analyses read"
+        )
+    return OutputChannel(output["body"], output["point"], output["axis"])
 
 
 def dump_scene(scene: dict) -> str:
@@ -333,91 +352,58 @@ def dump_scene(scene: dict) -> str:
 # ---------------------------------------------------------------- validation
 
 
-def _describe(field: Field) -> str:
-    if field.default is None:
-        return _describe(replace(field, default=NO_DEFAULT)) + ", or null (computed)"
-    if field.choices:
-        return "one of " + ", ".join(repr(c) for c in field.choices)
-    lo = "" if field.minimum is None else f"{field.minimum:g} {'<' if field.open_min else '≤'} "
-    hi = "" if field.maximum is None else f" ≤ {field.maximum:g}"
-    unit = f" ({field.unit})" if field.unit else ""
-    kind = {"vector2": "a list of 2 numbers", "vector3": "a list of 3 numbers"}.get(field.kind)
-    if kind:
-        return f"{kind}, each {lo}x{hi}{unit}" if (lo or hi) else kind + unit
-    what = {"int": "a whole number", "number": "a number", "str": "a text", "bool": "true/false"}
-    if lo or hi:
-        return f"{what.get(field.kind, field.kind)} {lo}x{hi}{unit}"
-    return what.get(field.kind, "a " + field.kind) + unit
-
-
-def _check_number(x: Any, field: Field) -> bool:
-    if isinstance(x, bool) or not isinstance(x, int | float) or not math.isfinite(x):
-        return False
-    if field.kind == "int" and not float(x).is_integer():
-        return False
-    if field.minimum is not None and (x < field.minimum or (field.open_min and x == field.minimum)):
-        return False
-    return field.maximum is None or x <= field.maximum
-
-
-def _check_value(value: Any, field: Field) -> bool:
-    if value is None and field.default is None:
-        return True  # null: computed from the rest of the scene
-    if field.kind in ("number", "int"):
-        return _check_number(value, field)
-    if field.kind == "str":
-        return isinstance(value, str) and (not field.choices or value in field.choices)
-    if field.kind == "bool":
-        return isinstance(value, bool)
-    if field.kind in ("vector2", "vector3"):
-        size = 2 if field.kind == "vector2" else 3
-        return (
-            isinstance(value, list)
-            and len(value) == size
-            and all(_check_number(v, field) for v in value)
-        )
-    if field.kind == "list":
-        return isinstance(value, list)
-    return isinstance(value, dict)
-
-
-def check_option(option: str, value: Any, field: Field) -> None:
-    """Raise ValueError naming a command-line option whose value `field` does not accept, in
-    the words of a scene key's message (`sim` reports it with exit code 2)."""
-    if not _check_value(value, field):
-        raise ValueError(f"{option} = {value!r} is not accepted; expected {_describe(field)}")
-
-
-def _check_section(data: Any, spec: dict, where: str, source: str) -> None:
-    """Every key of `data` known to `spec`, every required key present, every value valid."""
+def _check_section(data: Any, spec: dict, where: str, problems: list[Problem]) -> bool:
+    """Every key of `data` known to `spec`, every required key present, every value valid;
+    a Problem for each that is not. True when the section has none."""
     if not isinstance(data, dict):
-        raise SceneError(f"scene {source}: '{where}' must be a mapping of keys, not {data!r}")
+        problems.append(Problem(where, f"'{where}' must be a mapping of keys, not {data!r}"))
+        return False
+    count = len(problems)
     for key in data:
         if key not in spec:
-            raise SceneError(
-                f"scene {source}: unknown key '{where}.{key}'; accepted keys in '{where}': "
-                + ", ".join(spec)
+            problems.append(
+                Problem(
+                    f"{where}.{key}",
+                    f"unknown key '{where}.{key}'; accepted keys in '{where}': " + ", ".join(spec),
+                )
             )
     for key, field in spec.items():
         if key not in data:
             if field.required:
-                raise SceneError(
-                    f"scene {source}: missing key '{where}.{key}' ({_describe(field)})"
+                problems.append(
+                    Problem(f"{where}.{key}", f"missing key '{where}.{key}' ({describe(field)})")
                 )
-            continue
-        if not _check_value(data[key], field):
-            raise SceneError(
-                f"scene {source}: '{where}.{key}' = {data[key]!r} is not accepted; "
-                f"expected {_describe(field)}"
+        elif not check_value(data[key], field):
+            problems.append(
+                Problem(
+                    f"{where}.{key}",
+                    f"'{where}.{key}' = {data[key]!r} is not accepted; expected {describe(field)}",
+                )
             )
+    return len(problems) == count
 
 
-def _check_name(value: str, known: Iterable[str], where: str, what: str, source: str) -> None:
+def _check_name(
+    value: Any, known: Iterable[str], where: str, what: str, problems: list[Problem]
+) -> bool:
+    """A Problem when `value` is not one of the `known` names; True when it is."""
     known = list(known)
-    if value not in known:
-        raise SceneError(
-            f"scene {source}: '{where}' names unknown {what} '{value}'; accepted: "
-            + ", ".join(known)
+    if value in known:
+        return True
+    problems.append(
+        Problem(where, f"'{where}' names unknown {what} '{value}'; accepted: " + ", ".join(known))
+    )
+    return False
+
+
+def _check_position(value: Any, where: str, problems: list[Problem]) -> None:
+    """A Problem when `value` is not a point [x, y] (m)."""
+    if not check_value(value, HINT["position"]):
+        problems.append(
+            Problem(
+                where,
+                f"'{where}' = {value!r} is not accepted; expected {describe(HINT['position'])}",
+            )
         )
 
 
@@ -429,115 +415,171 @@ def body_points(body: dict) -> list[str]:
     return names + list(body["points"])
 
 
-def validate_scene(scene: dict, source: str = "<scene>") -> None:
-    """Raise SceneError for the first problem found in a resolved scene (defaults filled
-    by `with_defaults`)."""
-    _check_section({k: v for k, v in scene.items()}, TOP, "scene", source)
-    for name, mat in scene["materials"].items():
-        _check_section(mat, MATERIAL, f"materials.{name}", source)
-    for name, pos in scene["ground"].items():
-        if not _check_value(pos, HINT["position"]):
-            raise SceneError(
-                f"scene {source}: 'ground.{name}' = {pos!r} is not accepted; expected "
-                f"{_describe(HINT['position'])}"
-            )
-    bodies = scene["bodies"]
+def _mapping(scene: dict, key: str) -> dict:
+    """scene[key] when it is a mapping, else {} (its problem is reported by the top check)."""
+    value = scene.get(key)
+    return value if isinstance(value, dict) else {}
+
+
+def scene_problems(scene: dict) -> list[Problem]:
+    """Every problem of a resolved scene (defaults filled by `with_defaults`), in the order of
+    the scene's sections; a check that needs a valid key is skipped when that key has one."""
+    problems: list[Problem] = []
+    _check_section(scene, TOP, "scene", problems)
+    materials = _mapping(scene, "materials")
+    for name, mat in materials.items():
+        _check_section(mat, MATERIAL, f"materials.{name}", problems)
+    for name, pos in _mapping(scene, "ground").items():
+        _check_position(pos, f"ground.{name}", problems)
+    bodies = _mapping(scene, "bodies")
     if GROUND in bodies:
-        raise SceneError(f"scene {source}: 'bodies.{GROUND}' is reserved for the fixed frame")
+        problems.append(
+            Problem(f"bodies.{GROUND}", f"'bodies.{GROUND}' is reserved for the fixed frame")
+        )
+    valid = {}
     for name, body in bodies.items():
-        where = f"bodies.{name}"
-        if not isinstance(body, dict):
-            raise SceneError(f"scene {source}: '{where}' must be a mapping of keys")
-        shape = body.get("shape")
-        spec = BLOCK if shape == "block" else BAR
-        _check_section(body, spec, where, source)
-        _check_name(body["material"], scene["materials"], f"{where}.material", "material", source)
-        _check_section(body["hint"], HINT, f"{where}.hint", source)
+        if _check_body(name, body, materials, problems):
+            valid[name] = body
+    for name, joint in _mapping(scene, "joints").items():
+        _check_joint(scene, name, joint, bodies, valid, problems)
+    drive = scene.get("drive")
+    if (
+        drive is not None
+        and _check_section(drive, DRIVE, "drive", problems)
+        and _check_name(drive["body"], bodies, "drive.body", "body", problems)
+        and drive["body"] in valid
+        and valid[drive["body"]]["kind"] != "rigid"
+    ):
+        problems.append(Problem("drive.body", "'drive.body' must be a rigid body"))
+    contact = scene.get("contact", {})
+    if _check_section(contact, CONTACT, "contact", problems) and contact["v1"] <= contact["v0"]:
+        problems.append(
+            Problem(
+                "contact.v1",
+                f"'contact.v1' = {contact['v1']!r} must exceed 'contact.v0' = {contact['v0']!r}",
+            )
+        )
+    output = scene.get("output")
+    if output is not None and _check_section(output, OUTPUT, "output", problems):
+        _check_name(output["body"], bodies, "output.body", "body", problems)
+    _check_section(scene.get("simulation", {}), SIMULATION, "simulation", problems)
+    _check_section(scene.get("solver", {}), SOLVER, "solver", problems)
+    return problems
+
+
+def _check_body(name: str, body: Any, materials: dict, problems: list[Problem]) -> bool:
+    """Problems of `bodies.<name>`; True when it has none."""
+    where = f"bodies.{name}"
+    if not isinstance(body, dict):
+        problems.append(Problem(where, f"'{where}' must be a mapping of keys, not {body!r}"))
+        return False
+    count = len(problems)
+    shape = body.get("shape")
+    if _check_section(body, BLOCK if shape == "block" else BAR, where, problems):
+        _check_name(body["material"], materials, f"{where}.material", "material", problems)
+        if body["hint"] is not None:
+            _check_section(body["hint"], HINT, f"{where}.hint", problems)
         if body["kind"] in ("beam", "modal") and shape != "bar":
-            raise SceneError(f"scene {source}: '{where}.kind' = '{body['kind']}' needs shape 'bar'")
+            problems.append(
+                Problem(f"{where}.kind", f"'{where}.kind' = '{body['kind']}' needs shape 'bar'")
+            )
         if body["kind"] == "beam" and body["points"]:
-            raise SceneError(
-                f"scene {source}: '{where}.points' is not accepted for a beam; "
-                "joints attach to its 'start' and 'end' nodes"
+            problems.append(
+                Problem(
+                    f"{where}.points",
+                    f"'{where}.points' is not accepted for a beam; joints attach to its "
+                    "'start' and 'end' nodes",
+                )
             )
         for pname, vec in body["points"].items():
-            if not _check_value(vec, HINT["position"]):
-                raise SceneError(
-                    f"scene {source}: '{where}.points.{pname}' = {vec!r} is not accepted; "
-                    f"expected {_describe(HINT['position'])}"
+            _check_position(vec, f"{where}.points.{pname}", problems)
+        damping = body["damping"]
+        if _check_section(damping, DAMPING, f"{where}.damping", problems):
+            needed = {"stiffness": "coefficient", "modal": "ratio"}.get(damping["kind"])
+            if needed and needed not in damping:
+                problems.append(
+                    Problem(
+                        f"{where}.damping.{needed}",
+                        f"'{where}.damping.kind' = '{damping['kind']}' needs "
+                        f"'{where}.damping.{needed}' ({describe(DAMPING[needed])})",
+                    )
                 )
-        _check_section(body["damping"], DAMPING, f"{where}.damping", source)
-        needed = {"stiffness": "coefficient", "modal": "ratio"}.get(body["damping"]["kind"])
-        if needed and needed not in body["damping"]:
-            raise SceneError(
-                f"scene {source}: '{where}.damping.kind' = '{body['damping']['kind']}' "
-                f"needs '{where}.damping.{needed}' ({_describe(DAMPING[needed])})"
-            )
-    body_names = [GROUND, *bodies]
-    for name, joint in scene["joints"].items():
-        _validate_joint(scene, name, joint, body_names, source)
-    if "drive" in scene:
-        _check_section(scene["drive"], DRIVE, "drive", source)
-        _check_name(scene["drive"]["body"], bodies, "drive.body", "body", source)
-        if bodies[scene["drive"]["body"]]["kind"] != "rigid":
-            raise SceneError(f"scene {source}: 'drive.body' must be a rigid body")
-    _check_section(scene["contact"], CONTACT, "contact", source)
-    if scene["contact"]["v1"] <= scene["contact"]["v0"]:
-        raise SceneError(
-            f"scene {source}: 'contact.v1' = {scene['contact']['v1']!r} must exceed "
-            f"'contact.v0' = {scene['contact']['v0']!r}"
-        )
-    _check_section(scene["simulation"], SIMULATION, "simulation", source)
-    _check_section(scene["solver"], SOLVER, "solver", source)
-    if "drive" not in scene:
-        raise SceneError(
-            f"scene {source}: missing key 'scene.drive': the crank period sets the output "
-            "rate, the sections and the duration"
-        )
+    return len(problems) == count
 
 
-def _validate_joint(scene: dict, name: str, joint: Any, body_names: list, source: str) -> None:
+def _check_joint(
+    scene: dict, name: str, joint: Any, bodies: dict, valid: dict, problems: list[Problem]
+) -> None:
+    """Problems of `joints.<name>`; the checks of its bodies' kinds and points need the
+    bodies valid (`valid`), whose own problems are reported already."""
     where = f"joints.{name}"
-    if not isinstance(joint, dict) or joint.get("type") not in (
-        "revolute",
-        "translational",
-        "weld",
-    ):
+    spec = _joint_table(joint) if isinstance(joint, dict) else None
+    if spec is None:
         jt = joint.get("type") if isinstance(joint, dict) else joint
-        raise SceneError(
-            f"scene {source}: '{where}.type' = {jt!r} is not accepted; expected one of "
-            "'revolute', 'translational', 'weld'"
+        problems.append(
+            Problem(
+                f"{where}.type",
+                f"'{where}.type' = {jt!r} is not accepted; expected one of "
+                "'revolute', 'translational', 'weld'",
+            )
         )
-    spec = {"revolute": REVOLUTE, "translational": TRANSLATIONAL, "weld": WELD}[joint["type"]]
-    _check_section(joint, spec, where, source)
+        return
+    if not _check_section(joint, spec, where, problems):
+        return
     pair = joint["bodies"]
     if len(pair) != 2 or pair[0] == pair[1]:
-        raise SceneError(
-            f"scene {source}: '{where}.bodies' = {pair!r} must name two different bodies"
+        problems.append(
+            Problem(
+                f"{where}.bodies", f"'{where}.bodies' = {pair!r} must name two different bodies"
+            )
         )
-    for i, body in enumerate(pair):
-        _check_name(body, body_names, f"{where}.bodies[{i}]", "body", source)
-    bodies = scene["bodies"]
+        return
+    known = [GROUND, *bodies]
+    if not all(
+        [
+            _check_name(b, known, f"{where}.bodies[{i}]", "body", problems)
+            for i, b in enumerate(pair)
+        ]
+    ) or not all(b == GROUND or b in valid for b in pair):
+        return
     if joint["type"] == "translational":
         if pair[0] != GROUND or bodies[pair[1]]["kind"] != "rigid":
-            raise SceneError(
-                f"scene {source}: '{where}' must guide a rigid body along the ground: "
-                f"bodies: [ground, <rigid body>], got {pair!r}"
+            problems.append(
+                Problem(
+                    f"{where}.bodies",
+                    f"'{where}' must guide a rigid body along the ground: "
+                    f"bodies: [ground, <rigid body>], got {pair!r}",
+                )
             )
         return
     points = joint["points"]
     if len(points) != 2:
-        raise SceneError(f"scene {source}: '{where}.points' must list two point names")
+        problems.append(Problem(f"{where}.points", f"'{where}.points' must list two point names"))
+        return
     for i, (body, point) in enumerate(zip(pair, points, strict=True)):
-        known = scene["ground"] if body == GROUND else body_points(bodies[body])
-        _check_name(point, known, f"{where}.points[{i}]", f"point of '{body}'", source)
+        names = _mapping(scene, "ground") if body == GROUND else body_points(bodies[body])
+        _check_name(point, names, f"{where}.points[{i}]", f"point of '{body}'", problems)
     if joint["type"] == "weld":
         if joint["clearance"] != 0.0:
-            raise SceneError(f"scene {source}: '{where}.clearance' must be 0 for a weld")
+            problems.append(
+                Problem(f"{where}.clearance", f"'{where}.clearance' must be 0 for a weld")
+            )
         if any(b != GROUND and bodies[b]["kind"] != "rigid" for b in pair):
-            raise SceneError(f"scene {source}: '{where}' welds rigid bodies only")
+            problems.append(Problem(f"{where}.bodies", f"'{where}' welds rigid bodies only"))
+        for b in pair:
+            if b != GROUND and bodies[b]["hint"] is None:
+                problems.append(
+                    Problem(
+                        f"bodies.{b}.hint",
+                        f"'{where}' (a weld) needs 'bodies.{b}.hint': the weld holds the "
+                        "angle of the hints",
+                    )
+                )
     elif joint["clearance"] >= joint["bearing_radius"]:
-        raise SceneError(
-            f"scene {source}: '{where}.clearance' = {joint['clearance']!r} must be smaller "
-            f"than '{where}.bearing_radius' = {joint['bearing_radius']!r}"
+        problems.append(
+            Problem(
+                f"{where}.clearance",
+                f"'{where}.clearance' = {joint['clearance']!r} must be smaller than "
+                f"'{where}.bearing_radius' = {joint['bearing_radius']!r}",
+            )
         )

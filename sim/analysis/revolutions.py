@@ -24,6 +24,9 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
+from sim.results import scene_of
+from sim.scene import output_channel
+
 #: per-revolution quantities (columns of `revolution_table`) and their units
 SLIDER_ACCELERATION = "slider_acceleration"
 DRIVE_TORQUE = "drive_torque"
@@ -41,15 +44,22 @@ def unit_of(quantity: str) -> str:
     return UNITS.get(quantity, "N")
 
 
+def _channel(run: xr.Dataset) -> dict:
+    """The selection of the run's output channel (`output` of its recorded scene)."""
+    channel = output_channel(scene_of(run))
+    return {"body": channel.body, "axis": channel.axis}
+
+
 def revolution_table(run: xr.Dataset, case: str, transient: int) -> pd.DataFrame:
     """One row per revolution after the first `transient` revolutions of a run: its case,
-    ensemble member and seed, revolution, and peak |slider acceleration along the guide|
-    (m/s²), peak |drive torque| (N·m), peak contact force of each clearance joint (N) and
-    number of contact events (onsets and separations)."""
+    ensemble member and seed, revolution, and peak |acceleration| of the scene's output
+    channel (m/s²; `output`, by default the slider along its guide), peak |drive torque|
+    (N·m), peak contact force of each clearance joint (N) and number of contact events
+    (onsets and separations)."""
     first = max(int(transient), 0) + 1  # revolution 0 is the initial state, not a revolution
     sel = {"revolution": slice(first, None)}
     columns = {
-        SLIDER_ACCELERATION: run.revolution_peak_acceleration.sel(body="slider", axis="y"),
+        SLIDER_ACCELERATION: run.revolution_peak_acceleration.sel(_channel(run)),
         DRIVE_TORQUE: run.revolution_peak_drive_torque,
         CONTACT_EVENTS: run.revolution_contact_events,
     }

@@ -5,13 +5,16 @@ One module per group of subcommands (simulate, analyze, experiment), each with a
 imports it, so the command line sits on top of the library and no import cycle runs through it.
 
     sim run sixbar -o flagship.nc --set joints.A.clearance=0.5e-3
+    sim run my-linkage.yaml -o mine.nc    # a scene file of one's own (docs/scenes.md)
     sim scene sixbar --set drive.speed_rpm=60
     sim analyze flagship.nc -o flagship-analysis.nc
     sim sweep sixbar --key joints.A.clearance --range 0 1e-3 11 --out-dir runs -o bifurcation.nc
     sim experiment synthesize | compare ...
 
-Errors in the input (scene, overrides, files) are reported in one line with
-exit code 2 before any computation; a run that fails numerically reports the
+Errors in the input (scene, overrides, files) are reported with exit code 2 before any
+computation (every problem of a scene and its overrides in one message, each naming the file
+or the --set that wrote the key; a linkage that cannot close or cannot be driven through a
+full crank turn with the loop and the crank angle); a run that fails numerically reports the
 time, the joint and a diagnosis with exit code 1 and writes no output file.
 """
 

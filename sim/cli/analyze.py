@@ -7,9 +7,9 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from sim.analysis.run import analyze_run
+from sim.analysis.run import MIN_REVOLUTIONS, analyze_run
 from sim.cli.arguments import add_scene_arguments, check_output
-from sim.scene import Field, check_option
+from sim.scene_keys import Field, check_option
 
 #: default transient: this many revolutions, or a quarter of the run if that is fewer
 DEFAULT_TRANSIENT_REVOLUTIONS = 20
@@ -20,6 +20,43 @@ TRANSIENT = Field("int", 0, unit="revolutions")
 def default_transient(n_revolutions: int) -> int:
     """Revolutions dropped by default: min(20, a quarter of the run)."""
     return min(DEFAULT_TRANSIENT_REVOLUTIONS, n_revolutions // 4)
+
+
+def shortest_run(transient: int | None = None) -> int:
+    """The fewest crank revolutions (simulation.revolutions) a run needs for `sim analyze`
+    with this --transient (None: the default, which grows with the run): its sections
+    (one per revolution and t = 0) less the transient must be MIN_REVOLUTIONS."""
+    revolutions = 0
+    while True:
+        sections = revolutions + 1
+        dropped = default_transient(sections) if transient is None else transient
+        if sections - dropped >= MIN_REVOLUTIONS:
+            return revolutions
+        revolutions += 1
+
+
+def _check_length(run: xr.Dataset, transient: int | None) -> None:
+    """ValueError stating the fixed run length `sim analyze` needs, when the run is shorter."""
+    need = shortest_run(transient)
+    have = run.sizes.get("revolution", 1) - 1
+    if have < need:
+        dropped = "the default transient" if transient is None else f"--transient {transient}"
+        raise ValueError(
+            f"the run has {have} crank revolutions; with {dropped} the analysis needs runs of "
+            f"at least {need} (simulation.revolutions ≥ {need})"
+        )
+
+
+def verdict_table(analysis: xr.Dataset) -> str:
+    """The verdict of every channel, one line each, with its largest Lyapunov exponent."""
+    lines = [f"{'channel':<14} {'verdict':<16} {'λ (1/s)':>10}  reason"]
+    for i, channel in enumerate(analysis["channel"].values):
+        lines.append(
+            f"{channel!s:<14} {analysis['verdict'].values[i]!s:<16} "
+            f"{float(analysis['lyapunov_exponent'].values[i]):>10.3g}  "
+            f"{analysis['verdict_reason'].values[i]}"
+        )
+    return "\n".join(lines)
 
 
 def register(subparsers: argparse._SubParsersAction) -> argparse.ArgumentParser:
@@ -89,6 +126,7 @@ def analyze_command(args: argparse.Namespace) -> int:
     check_output("--output", args.output)
     run = open_run(args.run)
     try:
+        _check_length(run, args.transient)
         transient = (
             default_transient(run.sizes.get("revolution", 0))
             if args.transient is None
@@ -102,6 +140,8 @@ def analyze_command(args: argparse.Namespace) -> int:
         print(f"sim analyze: {args.run}: {error}", file=sys.stderr)
         return 1
     write_netcdf(analysis, args.output)  # atomic: a crash leaves no partial file
+    print(f"{args.output}: {run.sizes['revolution'] - 1} revolutions, {transient} dropped")
+    print(verdict_table(analysis))
     return 0
 
 

@@ -6,7 +6,9 @@ from pathlib import Path
 
 def add_scene_arguments(parser: argparse.ArgumentParser) -> None:
     """The scene name or path and the repeatable --set overrides."""
-    parser.add_argument("scene", help="built-in scene name (sixbar, slider-crank) or YAML path")
+    parser.add_argument(
+        "scene", help="built-in scene name (sixbar, fourbar, slider-crank) or YAML path"
+    )
     parser.add_argument(
         "--set",
         dest="overrides",

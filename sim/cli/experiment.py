@@ -28,7 +28,7 @@ from sim.experiment.recording import (
 from sim.experiment.sensor import SensorSettings, load_sensor_settings
 from sim.experiment.synthesize import synthesize_recording
 from sim.provenance import library_versions_json
-from sim.scene import DRIVE, Field, check_option
+from sim.scene_keys import DRIVE, Field, check_option
 
 DEFAULT_SEED = 20240607
 # Outputs of `compare`, fixed names inside --out-dir so a workflow can declare them.

@@ -30,6 +30,13 @@ def _cmd_run(args: argparse.Namespace) -> int:
         f"real-time factor {a['real_time_factor']:.3g}, peak contact force {peak_force:.4g} N, "
         f"energy error {a['energy_error_relative']:.2e} of the energy scale"
     )
+    if a["energy_audit_exceeded"]:
+        print(
+            f"{args.output}: the energy audit {a['energy_error_relative']:.2e} exceeds the bound "
+            f"of a sound run, {a['energy_audit_bound']:g} of the energy scale "
+            "(docs/fidelity.md): tighten solver.rtol or, under generalized_alpha, raise "
+            "solver.rho_inf"
+        )
     return 0
 
 

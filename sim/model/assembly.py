@@ -69,7 +69,9 @@ def stiffness_damping_coefficient(body: dict, material: dict) -> float:
     return 0.0
 
 
-def _local_points(body: dict) -> dict[str, tuple[float, float]]:
+def local_points(body: dict) -> dict[str, tuple[float, float]]:
+    """Every named point of a rigid body or modal link in its frame (m): `centre` at the
+    origin, a bar's `start` and `end` on its axis, and the scene's `points`."""
     pts = {"centre": (0.0, 0.0)}
     if body["shape"] == "bar":
         half = 0.5 * body["length"]
@@ -141,7 +143,7 @@ def _add_body(builder: SystemBuilder, name: str, body: dict, mat: dict, rigid: b
             name,
             m,
             j,
-            _local_points(body),
+            local_points(body),
             body["length"],
             mat["density"] * width * height,
             mat["youngs_modulus"] * width * height**3 / 12.0,
@@ -151,7 +153,7 @@ def _add_body(builder: SystemBuilder, name: str, body: dict, mat: dict, rigid: b
             body["axial_modes"],
         )
         return
-    builder.add_rigid_body(name, m, j, _local_points(body))
+    builder.add_rigid_body(name, m, j, local_points(body))
 
 
 def _add_joint(builder: SystemBuilder, scene: dict, name: str, joint: dict, ideal: bool) -> None:

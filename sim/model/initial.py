@@ -1,24 +1,27 @@
 """Initial position and velocity analysis.
 
-Positions: Newton–Raphson on Φ(q, t0) = 0 from the scene's hints, with the
-minimum-norm correction Δq = −Φ_q⁺ Φ so that free coordinates stay near their
-hints (Nikravesh 1988, ch. 4; Haug 1989, ch. 3). Velocities: the minimum-norm
-solution of Φ_q q̇ = ν; accelerations likewise from Φ_q q̈ = γ. Solved on the
-all-ideal, all-rigid mechanism, so every clearance joint starts centred (zero
-eccentricity), as docs/model.md says; beams are then laid along their rigid pose and,
-by default, deformed to carry its loads (`quasi_static_beams`).
+Positions: Newton–Raphson on Φ(q, t0) = 0 from the scene's hints, with the minimum-norm
+correction Δq = −Φ_q⁺ Φ so that free coordinates stay near their hints (Nikravesh 1988,
+ch. 4; Haug 1989, ch. 3); bodies without a hint are found by a search from several guesses,
+which reports the assembly branch it takes (`assemble`). Velocities: the minimum-norm
+solution of Φ_q q̇ = ν; accelerations likewise from Φ_q q̈ = γ. Solved on the all-ideal,
+all-rigid mechanism, so every clearance joint starts centred (zero eccentricity), as
+docs/model.md says; beams are then laid along their rigid pose and, by default, deformed to
+carry its loads (`quasi_static_beams`).
 """
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
+from typing import NamedTuple
 
 import numpy as np
 from scipy.optimize import least_squares
 
 from sim.model import ancf, modal
-from sim.model.assembly import AssemblyError, Layout, build_system
+from sim.model.assembly import AssemblyError, Layout, build_system, local_points
 from sim.model.constraints import constraint_terms
 from sim.model.system import System
+from sim.scene import GROUND
 
 
 def constraint_values(system: System, q: np.ndarray, qd: np.ndarray, t: float):
@@ -53,43 +56,60 @@ def minimum_norm_newton(
 # At the least-squares closest approach a joint whose gap is below this share of the largest
 # closes: the tight tolerances below leave closed joints near 1e-11 m against gaps of mm.
 _OPEN_SHARE = 1e-3
-# A closest approach whose largest gap is below this (m) is an assembly Newton missed.
-_CLOSED_GAP = 1e-9
+# Starts of the branch search when some bodies have no hint (each closes the loops from other
+# angles of those bodies); a four-bar has two branches, a six-bar four.
+_STARTS = 12
+# Two assemblies whose angles differ by less than this (rad) are one branch.
+_SAME_BRANCH = 1e-6
+
+
+def _close(linearize: Callable, q0: np.ndarray) -> tuple[np.ndarray, bool]:
+    """Close every loop from q0: Newton, and when it fails (from a far guess its iterates can
+    wander for 50 iterations) Newton again from the least-squares closest approach, which
+    converges when that approach is an assembly. Returns the closest approach and False when
+    no assembly is near."""
+    q, converged = minimum_norm_newton(linearize, q0, 1e-13, 50)
+    if converged:
+        return q, True
+    closest = least_squares(
+        lambda x: linearize(x)[0], q0, jac=lambda x: linearize(x)[1], xtol=1e-15, ftol=1e-15
+    ).x
+    q, converged = minimum_norm_newton(linearize, closest, 1e-13, 50)
+    return (q, True) if converged else (closest, False)
 
 
 def solve_positions(system: System, layout: Layout, q0: np.ndarray, t: float = 0.0) -> np.ndarray:
     """Close every loop from the guess q0; AssemblyError names the loop that cannot close."""
-    zero = np.zeros_like(q0)
+    linearize = _linearization(system, t)
+    q, closed = _close(linearize, q0)
+    if closed:
+        return q
+    raise AssemblyError(_open_loop(linearize, layout, q))
+
+
+def _linearization(system: System, t: float) -> Callable:
+    """x ↦ (Φ(x, t), Φ_q(x, t)) of the position analysis."""
+    zero = np.zeros(system.n)
 
     def linearize(q):
         phi, jac, _ = constraint_values(system, q, zero, t)
         return phi, jac
 
-    q, converged = minimum_norm_newton(linearize, q0, 1e-13, 50)
-    if converged:
-        return q
-    raise AssemblyError(_open_loop(linearize, layout, q0))
+    return linearize
 
 
-def _open_loop(linearize: Callable, layout: Layout, q0: np.ndarray) -> str:
-    """Why the loops do not close, for the message. Newton's last iterate is arbitrary when
-    no assembly exists, so the diagnosis is the least-squares closest approach from q0: the
-    joints still open there form the loop that cannot close, each with its gap (m; angles
-    of welds and guides in rad). The drive's row, an angle, is left out of the account."""
-    closest = least_squares(
-        lambda q: linearize(q)[0], q0, jac=lambda q: linearize(q)[1], xtol=1e-15, ftol=1e-15
-    )
+def _open_loop(linearize: Callable, layout: Layout, closest: np.ndarray) -> str:
+    """Why the loops do not close, for the message, from the least-squares closest approach
+    (Newton's last iterate is arbitrary when no assembly exists): the joints still open there
+    form the loop that cannot close, each with its gap (m; angles of welds and guides in rad).
+    The drive's row, an angle, is left out of the account."""
+    residual = linearize(closest)[0]
     gaps = {
-        name: float(np.linalg.norm(closest.fun[first : first + count]))
+        name: float(np.linalg.norm(residual[first : first + count]))
         for name, first, count in layout.constraint_rows
         if name != "drive"
     }
     worst = max(gaps, key=gaps.get)
-    if gaps[worst] < _CLOSED_GAP:
-        return (
-            "the linkage did not close in 50 Newton iterations from the scene's hints, though "
-            "an assembly exists near them: move bodies.<name>.hint closer to the assembled pose"
-        )
     loop = [name for name, gap in gaps.items() if gap > _OPEN_SHARE * gaps[worst]]
     return (
         f"the linkage cannot close: the loop through joints {', '.join(loop)} cannot close; "
@@ -106,17 +126,118 @@ def solve_velocities(system: System, q: np.ndarray, t: float = 0.0) -> np.ndarra
     return np.linalg.lstsq(jac, nu, rcond=None)[0]
 
 
-def rigid_initial_state(scene: dict) -> tuple[np.ndarray, np.ndarray, System, Layout]:
-    """Positions and velocities of the all-ideal, all-rigid mechanism at t = 0."""
+#: Assembly.branch when every body has a hint
+HINTED = "from the scene's hints"
+
+
+class Assembly(NamedTuple):
+    """The all-ideal, all-rigid mechanism assembled at t = 0: positions, velocities, its
+    system and layout, and which assembly branch was taken (for the log and the output)."""
+
+    q: np.ndarray
+    qd: np.ndarray
+    system: System
+    layout: Layout
+    branch: str
+
+
+def _guesses(scene: dict, layout: Layout) -> Iterator[np.ndarray]:
+    """Guesses of the rigid coordinates: bodies with a hint at it; the others placed joint by
+    joint from the ground (a pinned body's point on its partner's, a guided body on its
+    guide) at angles spread over the circle, differently at each of `_STARTS` starts (one
+    start when every body has a hint)."""
+    bodies = scene["bodies"]
+    free = [b for b in layout.bodies if bodies[b]["hint"] is None]
+    golden = (math.sqrt(5.0) - 1.0) / 2.0
+    for start in range(_STARTS if free else 1):
+        pose = {
+            b: (
+                np.array(bodies[b]["hint"]["position"]),
+                math.radians(bodies[b]["hint"]["angle_deg"]),
+            )
+            for b in layout.bodies
+            if b not in free
+        }
+        angles = {
+            b: 2.0 * math.pi * ((start + 1) * golden * (i + 1) % 1.0) for i, b in enumerate(free)
+        }
+        for _ in free:
+            for joint in scene["joints"].values():
+                _place(scene, joint, pose, angles)
+        guess = np.zeros(3 * len(layout.bodies))
+        for b in layout.bodies:
+            position, angle = pose.get(b, (np.zeros(2), angles.get(b, 0.0)))
+            o = layout.offset[b]
+            guess[o : o + 3] = (*position, angle)
+        yield guess
+
+
+def _place(scene: dict, joint: dict, pose: dict, angles: dict) -> None:
+    """Place a body of `joint` that has no pose yet from its partner's (see `_guesses`)."""
+    pair = joint["bodies"]
+    if joint["type"] == "translational":
+        if pair[1] in angles and pair[1] not in pose:
+            pose[pair[1]] = (np.array(joint["guide_point"]), math.radians(joint["guide_angle_deg"]))
+        return
+    ends = list(zip(pair, joint["points"], strict=True))
+    for (a, pa), (b, pb) in (ends, ends[::-1]):
+        if b in angles and b not in pose and (a == GROUND or a in pose):
+            local = local_points(scene["bodies"][b])[pb]
+            pose[b] = (_world(scene, a, pa, pose) - _rotated(angles[b], local), angles[b])
+
+
+def _rotated(theta: float, point: tuple[float, float]) -> np.ndarray:
+    """`point` (m) turned by theta (rad)."""
+    c, s = math.cos(theta), math.sin(theta)
+    return np.array([c * point[0] - s * point[1], s * point[0] + c * point[1]])
+
+
+def _world(scene: dict, body: str, point: str, pose: dict) -> np.ndarray:
+    """Global position (m) of a body's named point at its pose (a ground point's own)."""
+    if body == GROUND:
+        return np.array(scene["ground"][point], dtype=float)
+    position, theta = pose[body]
+    return position + _rotated(theta, local_points(scene["bodies"][body])[point])
+
+
+def assemble(scene: dict) -> Assembly:
+    """The all-ideal, all-rigid mechanism assembled at t = 0 from the scene's hints. Bodies
+    without a hint are found by a search from `_STARTS` guesses (`_guesses`); of the distinct
+    assemblies it finds (the branches), the first is taken and `Assembly.branch` says which,
+    with the others, as the body angles. AssemblyError names the loop that cannot close."""
     system, layout = build_system(scene, ideal=True, rigid=True)
-    guess = np.zeros(system.n)
-    for name in layout.bodies:
-        hint = scene["bodies"][name]["hint"]
-        o = layout.offset[name]
-        guess[o : o + 2] = hint["position"]
-        guess[o + 2] = math.radians(hint["angle_deg"])
-    q = solve_positions(system, layout, guess)
-    return q, solve_velocities(system, q), system, layout
+    linearize = _linearization(system, 0.0)
+    free = [b for b in layout.bodies if scene["bodies"][b]["hint"] is None]
+    branches, first_miss = [], None
+    for guess in _guesses(scene, layout):
+        q, closed = _close(linearize, guess)
+        if not closed:
+            first_miss = q if first_miss is None else first_miss
+            continue
+        angles = np.array([q[layout.offset[b] + 2] for b in free])
+        if all(
+            np.abs(np.angle(np.exp(1j * (angles - other[1])))).max(initial=0.0) > _SAME_BRANCH
+            for other in branches
+        ):
+            branches.append((q, angles))
+    if not branches:
+        raise AssemblyError(_open_loop(linearize, layout, first_miss))
+    q = branches[0][0]
+    branch = HINTED
+    if free:
+
+        def described(angles):
+            return ", ".join(
+                f"{b} {math.degrees(a) % 360.0:.2f}°" for b, a in zip(free, angles, strict=True)
+            )
+
+        branch = (
+            f"bodies without a hint assembled at angles {described(branches[0][1])}, the first "
+            f"of {len(branches)} assembly branches found from {_STARTS} starts"
+            + "".join(f"; another: {described(a)}" for _, a in branches[1:])
+            + " (give bodies.<name>.hint to choose one)"
+        )
+    return Assembly(q, solve_velocities(system, q), system, layout, branch)
 
 
 def solve_accelerations(system: System, q: np.ndarray, qd: np.ndarray, t: float = 0.0):
@@ -128,12 +249,14 @@ def solve_accelerations(system: System, q: np.ndarray, qd: np.ndarray, t: float 
     return np.linalg.lstsq(jac, gamma, rcond=None)[0]
 
 
-def _rigid_motion(scene: dict, layout: Layout) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+def _rigid_motion(
+    scene: dict, layout: Layout, assembly: Assembly
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """q, q̇ and q̈ of the all-ideal, all-rigid mechanism at t = 0 in the
-    coordinates of `layout`: each beam laid straight along its rigid pose, its
-    nodes moving with the rigid link (r = R + u e, r' = e with e = (cos θ, sin θ),
+    coordinates of `layout`, from the rigid `assembly`: each beam laid straight along its
+    rigid pose, its nodes moving with the rigid link (r = R + u e, r' = e with e = (cos θ, sin θ),
     so ṙ = Ṙ + u θ̇ e⊥, r̈ = R̈ + u (θ̈ e⊥ − θ̇² e), and likewise r', e⊥ = (−sin θ, cos θ))."""
-    q_r, qd_r, system_r, rigid_layout = rigid_initial_state(scene)
+    q_r, qd_r, system_r, rigid_layout, _ = assembly
     qdd_r = solve_accelerations(system_r, q_r, qd_r)
     n = sum(
         4 * (layout.elements[b] + 1) if layout.is_beam[b] else 3 + layout.modes.get(b, 0)
@@ -263,12 +386,14 @@ def check_independent(system: System, layout: Layout, q: np.ndarray) -> None:
     )
 
 
-def initial_state(scene: dict, system: System, layout: Layout) -> tuple[np.ndarray, np.ndarray]:
-    """q and q̇ at t = 0 for `system`: the rigid assembly with every clearance
+def initial_state(
+    scene: dict, system: System, layout: Layout, assembly: Assembly
+) -> tuple[np.ndarray, np.ndarray]:
+    """q and q̇ at t = 0 for `system`: the rigid `assembly` (`assemble`) with every clearance
     joint centred; beams pre-deformed to the quasi-static solution
     (`simulation.beam_start: quasi-static`) or straight along their rigid pose
     (`straight`), moving with it. AssemblyError when the constraints are redundant."""
-    q, qd, qdd = _rigid_motion(scene, layout)
+    q, qd, qdd = _rigid_motion(scene, layout, assembly)
     check_independent(system, layout, q)
     flexible = any(layout.is_beam.values()) or any(layout.modes.values())
     if flexible and scene["simulation"]["beam_start"] == "quasi-static":

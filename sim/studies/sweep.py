@@ -6,6 +6,7 @@ the worker processes of one job (:mod:`sim.studies.batch`)."""
 
 import functools
 import json
+import sys
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -186,6 +187,7 @@ def run_sweep(
             transient_revolutions=transient_revolutions,
             continuation=continuation,
             progress=progress and workers == 1,
+            announce=progress,
             indicators=indicators,
         )
         for chunk in chunks
@@ -218,12 +220,16 @@ def _run_chunk(
     continuation: bool,
     progress: bool,
     indicators: Indicators | None,
+    announce: bool = False,
 ) -> list[tuple[xr.Dataset, xr.Dataset | None]]:
     """Run consecutive sweep values in order, continuing along them if asked; write each run
-    and return each value's section variables and indicators (None without ``indicators``)."""
+    and return each value's section variables and indicators (None without ``indicators``).
+    With ``announce``, a line on stderr names each value as its run starts."""
     points = []
     final, previous_value = None, None
     for scene, value, path in zip(scenes, values, paths, strict=True):
+        if announce:
+            print(f"{label} = {value:g}: running, to {path}", file=sys.stderr, flush=True)
         start, origin = None, "assembled"
         if continuation and final is not None:
             start, origin = final, f"continued from {label} = {previous_value:g}"

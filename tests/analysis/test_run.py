@@ -66,7 +66,7 @@ def parse(argv: list[str]) -> argparse.Namespace:
     return parser.parse_args(argv)
 
 
-def test_cli_writes_the_analysis(ideal_run, tmp_path):
+def test_cli_writes_the_analysis(ideal_run, tmp_path, capsys):
     run_file, out_file = tmp_path / "run.nc", tmp_path / "run-analysis.nc"
     ideal_run.to_netcdf(run_file)
     args = parse(["analyze", str(run_file), "-o", str(out_file), "--transient", "10"])
@@ -74,6 +74,11 @@ def test_cli_writes_the_analysis(ideal_run, tmp_path):
     with xr.open_dataset(out_file) as written:
         assert set(written["verdict"].values) == {"periodic"}
         assert written.attrs["transient_revolutions"] == 10
+        channels = [str(c) for c in written["channel"].values]
+    # the verdict table on stdout: a header and one line per channel, naming its verdict
+    table = capsys.readouterr().out.splitlines()[1:]
+    assert table[0].split()[:2] == ["channel", "verdict"]
+    assert [line.split()[:2] for line in table[1:]] == [[c, "periodic"] for c in channels]
     assert sorted(path.name for path in tmp_path.iterdir()) == ["run-analysis.nc", "run.nc"]
 
 
@@ -93,6 +98,20 @@ def test_cli_rejects_too_few_revolutions(ideal_run, tmp_path, capsys):
     args = parse(["analyze", str(run_file), "-o", str(tmp_path / "out.nc"), "--transient", "10"])
     assert args.func(args) == 1
     assert "revolution" in capsys.readouterr().err
+
+
+def test_cli_states_the_run_length_it_needs_as_a_fixed_number(ideal_run, tmp_path, capsys):
+    # With the default transient (min(20, a quarter of the sections)) a run needs 32
+    # revolutions: 33 sections less 8 dropped leave the 25 the period search needs; 31 leave 24.
+    # The number does not move as the run grows.
+    for kept in (20, 31):
+        run_file = tmp_path / f"run{kept}.nc"
+        ideal_run.isel(revolution=slice(0, kept + 1)).to_netcdf(run_file)
+        args = parse(["analyze", str(run_file), "-o", str(tmp_path / "out.nc")])
+        assert args.func(args) == 1
+        err = capsys.readouterr().err
+        assert f"the run has {kept} crank revolutions" in err
+        assert "the analysis needs runs of at least 32 (simulation.revolutions ≥ 32)" in err
 
 
 @pytest.fixture(scope="module")

@@ -51,6 +51,18 @@ def test_speed_sweep_of_the_ideal_sixbar(tmp_path, continuation):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["bifurcation.nc", "runs"]
 
 
+def test_the_progress_names_each_value(tmp_path, capsys):
+    out_dir = tmp_path / "runs"
+    argv = ["sweep", "slider-crank", "--set", "simulation.revolutions=1", "--transient", "0"]
+    argv += ["--key", "drive.speed_rpm", "--values", "60", "120", "--out-dir", str(out_dir)]
+    assert main([*argv, "-o", str(tmp_path / "b.nc")]) == 0
+    lines = [x for x in capsys.readouterr().err.splitlines() if ": running, to " in x]
+    assert lines == [
+        f"speed_rpm = {value}: running, to {out_dir / f'speed_rpm-{value}.nc'}"
+        for value in (60, 120)
+    ]
+
+
 def test_clearance_sweep_through_the_ideal_joint(tmp_path):
     combined_file = tmp_path / "bifurcation.nc"
     argv = ["sweep", "sixbar", "-q", *SHORT, "--key", "joints.A.clearance"]

@@ -1,14 +1,17 @@
-"""Loading returns a fully defaulted scene (sim/scene.py): every optional key with a default is
+"""Loading returns a fully defaulted scene (sim/scene_keys.py): every optional key with a default is
 filled in, the result loads again unchanged, and the defaults mean what docs say."""
 
 import json
+from pathlib import Path
 
 import pytest
 import xarray as xr
 
 from sim.model.assembly import body_mass_properties
 from sim.results import scene_of
-from sim.scene import BODY_COMMON, NO_DEFAULT, TOP, SceneError, dump_scene, load_scene
+from sim.scene import SceneError, dump_scene, load_scene
+from sim.scene_keys import BODY_COMMON, NO_DEFAULT, TABLES, TOP
+from sim.scene_reference import reference
 
 BEAMS = ["bodies.rod2.kind=beam", "bodies.rod3.kind=beam"]
 
@@ -73,3 +76,21 @@ def test_a_run_file_written_before_the_defaults_gets_them():
             del body[key]
     ds = xr.Dataset(attrs={"scene": json.dumps(old)})
     assert scene_of(ds) == scene
+
+
+def test_the_scene_key_reference_page_is_the_generated_one():
+    # docs/scenes.md is generated from the tables of keys: regenerate it with
+    # `python -m sim.scene_reference docs/scenes.md` after changing a table.
+    page = Path(__file__).parents[2] / "docs" / "scenes.md"
+    assert page.read_text(encoding="utf-8") == reference()
+    for table in TABLES.values():
+        for key, field in table.items():
+            assert field.doc, f"key '{key}' has no doc for the reference page"
+
+
+def test_a_scene_without_contact_simulation_or_solver_gets_the_six_bars_values():
+    # Declared once: the six-bar leans on the defaults, so a short scene gets its values.
+    sixbar = load_scene("sixbar")
+    short = load_scene("fourbar")
+    for section in ("contact", "simulation", "solver"):
+        assert short[section] == sixbar[section], section

@@ -171,3 +171,81 @@ def test_redundant_joint_is_named(tmp_path, capsys):
     assert "the constraints are redundant at t = 0: the rows of joints 'O', 'X' depend" in err
     assert "Remove one of those joints (e.g. 'X', defined last)" in err
     assert not (tmp_path / "x.nc").exists()
+
+
+def test_every_problem_is_reported_at_once(tmp_path, capsys):
+    # Three problems of the file and one of an override, in one message, each named by its
+    # origin: the file for the keys it wrote, the --set for the key the --set wrote.
+    scene = tmp_path / "many.yaml"
+    scene.write_text(
+        "base: sixbar\ncontact: {friction: -1}\nbodies: {rod2: {lenght: 0.3}}\nsolver: {rtol: 1}\n"
+    )
+    out = tmp_path / "x.nc"
+    assert main(["run", str(scene), "-q", "-o", str(out), "--set", "joints.A.clearnce=1e-4"]) == 2
+    err = capsys.readouterr().err
+    assert "4 problems, all reported here:" in err
+    assert f"scene '{scene}': 'contact.friction' = -1 is not accepted; expected a number" in err
+    assert f"scene '{scene}': unknown key 'bodies.rod2.lenght'" in err
+    assert f"scene '{scene}': 'solver.rtol' = 1 is not accepted; expected a number" in err
+    assert "--set 'joints.A.clearnce=1e-4': unknown key 'joints.A.clearnce'" in err
+    assert not out.exists()
+
+
+def test_a_typo_in_an_override_is_blamed_on_the_override(capsys):
+    assert main(["scene", "sixbar", "--set", "drive.sped_rpm=60"]) == 2
+    err = capsys.readouterr().err
+    assert err.startswith("sim scene: error: --set 'drive.sped_rpm=60': unknown key")
+    assert "(built-in)" not in err
+
+
+def test_base_removes_an_inherited_body_and_its_joints(tmp_path):
+    # The six-bar minus rod4 and the slider is a four-bar once rod2 and rod3 are joined at D.
+    scene = tmp_path / "fourbar-from-sixbar.yaml"
+    scene.write_text(
+        "base: sixbar\n"
+        "name: fourbar-from-sixbar\n"
+        "bodies: {rod4: null, slider: null}\n"
+        "joints:\n"
+        "  D1: null\n"
+        "  D2: null\n"
+        "  E: null\n"
+        "  B: null\n"
+        "  D: {type: revolute, bodies: [rod2, rod3], points: [end, end]}\n"
+    )
+    resolved = load_scene(str(scene))
+    assert list(resolved["bodies"]) == ["crank", "rod2", "rod3"]
+    assert list(resolved["joints"]) == ["O", "A", "C", "D"]
+    assert resolved["joints"]["D"]["clearance"] == 0.0
+
+
+def test_a_joint_left_without_its_body_is_named(tmp_path, capsys):
+    scene = tmp_path / "dangling.yaml"
+    scene.write_text("base: sixbar\nbodies: {rod4: null, rod9: null}\n")
+    assert main(["scene", str(scene)]) == 2
+    err = capsys.readouterr().err
+    assert "4 problems" in err  # rod9, and the joints D1, D2, E of rod4
+    assert "'bodies.rod9: null' removes an inherited entry, but the base has none" in err
+    assert "'joints.D1.bodies[1]' names unknown body 'rod4'" in err
+
+
+def test_a_joint_of_another_type_replaces_the_inherited_one_whole(tmp_path, capsys):
+    # The six-bar's B is translational; a revolute B replaces it, keeping none of the guide's
+    # keys (no merged hybrid), and its own missing keys are named.
+    scene = tmp_path / "retyped.yaml"
+    scene.write_text(
+        "base: sixbar\njoints:\n"
+        "  B: {type: revolute, bodies: [ground, slider], points: [O, centre]}\n"
+    )
+    joint = load_scene(str(scene))["joints"]["B"]
+    assert joint == {
+        "type": "revolute",
+        "bodies": ["ground", "slider"],
+        "points": ["O", "centre"],
+        "clearance": 0.0,
+        "bearing_radius": 0.015,
+    }
+    scene.write_text("base: sixbar\njoints:\n  B: {type: revolute}\n")
+    assert main(["scene", str(scene)]) == 2
+    err = capsys.readouterr().err
+    assert "missing key 'joints.B.bodies'" in err and "missing key 'joints.B.points'" in err
+    assert "guide" not in err

@@ -10,7 +10,7 @@ import pytest
 from sim.crosscheck import contact
 from sim.model.assembly import build_system
 from sim.model.clearance import revolute_clearance_forces, translational_clearance_forces
-from sim.model.initial import rigid_initial_state
+from sim.model.initial import assemble
 from sim.model.system import N_JOINT_OUT, n_gaps
 from sim.scene import load_scene
 
@@ -19,7 +19,7 @@ from sim.scene import load_scene
 def sixbar():
     scene = load_scene("sixbar", ["joints.A.clearance=5e-4", "joints.B.clearance=5e-4"])
     system, layout = build_system(scene)
-    q0, qd0, _, _ = rigid_initial_state(scene)
+    q0, qd0 = assemble(scene)[:2]
     return system, layout, q0, qd0
 
 
