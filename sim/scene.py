@@ -23,6 +23,7 @@ from typing import Any
 
 import yaml
 
+from sim.quantities import SAMPLINGS
 from sim.yaml_keys import DuplicateKeyError, dotted, key_lines
 
 GROUND = "ground"
@@ -157,6 +158,10 @@ SIMULATION = {
     "revolutions": _num(0.0, 1e6, "revolutions", open_min=True),
     "output_per_revolution": Field("int", 1, 1_000_000),
     "beam_start": Field("str", choices=("quasi-static", "straight")),
+    # mean: the fast quantities (accelerations, drive torque, contact forces, deflections) are
+    # recorded as means over each sample's window, free of aliasing; point: every quantity is
+    # its value at the sample time (sim.quantities says which is which)
+    "sampling": Field("str", choices=SAMPLINGS, required=False, default="mean"),
 }
 SOLVER = {
     "method": Field("str", choices=("dopri5", "generalized_alpha")),
@@ -306,6 +311,7 @@ def with_defaults(scene: dict) -> dict:
     for body in bodies.values() if isinstance(bodies, dict) else ():
         if isinstance(body, dict):
             _fill(body, BODY_COMMON)
+    _fill(out.get("simulation"), SIMULATION)
     _fill(out.get("solver"), SOLVER)
     return out
 
