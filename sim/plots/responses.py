@@ -62,7 +62,9 @@ def _zoom(ax, t: np.ndarray, sim: np.ndarray, ref: np.ndarray, width: float, how
     inset.set_xlabel(f"ms from t = {centre:.4g} s", fontsize=6, labelpad=1)
     inset.set_title(how, fontsize=6, pad=2)
     inset.grid(False)
-    ax.indicate_inset_zoom(inset, edgecolor="0.4")
+    # the inset's time axis is in ms from `centre`: the marked region in the panel's seconds
+    lo, hi = inset.get_ylim()
+    ax.indicate_inset((centre - width / 2, lo, width, hi - lo), inset, edgecolor="0.4")
 
 
 def plot_responses(run: xr.Dataset, ideal: xr.Dataset, *, revolutions: float = 2.0) -> Figure:

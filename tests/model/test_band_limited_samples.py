@@ -6,7 +6,7 @@ a revolution (500 per second) point samples fold that ringing into the band a 10
 keeps. The reference is the same run recorded at 100 times the rate (DOPRI5's steps do not
 depend on the output times: the runs below take the same steps), where the boxcar is 100 times
 shorter and the ringing is resolved. One revolution: the two runs of the default test took
-81 s on a machine whose two cores ran four other jobs (load average 8), a quarter of that idle.
+81 s on a machine whose two cores ran four other jobs (load average 8).
 """
 
 import numpy as np
