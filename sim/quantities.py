@@ -5,9 +5,25 @@ The integrator's sample rows and peak vector (`sim.solve.record.column_layout` a
 `peak_layout`, filled by the compiled `sim.solve.record.write_row` and
 `sim.solve.stepping._update_peaks`), the netCDF writer and decoder (`sim.results`) and the
 cross-check's output (`sim.crosscheck.run`) all follow this table. Adding an output quantity
-means one entry here and, for a sampled quantity, its line in `write_row` (a peak: its lines
-in `_update_peaks` and the peak count of `sim.run`). Units are CF / UDUNITS strings (CF
-conventions 1.8).
+means one entry here and, for a sampled quantity, its block in `write_row` (a peak: its
+slot in `sim.solve.record.PeakSlots`, which `_update_peaks` writes through). Units are CF /
+UDUNITS strings (CF conventions 1.8).
+
+How a sample is taken (`sampling`, the scene's `simulation.sampling`):
+- POINT: the value at the sample time. Content above the Nyquist frequency 1/(2 Δt) folds
+  back into the recorded band: positions, velocities and the energies, smooth at the output
+  rate, are recorded so.
+- INTERVAL_MEAN: the mean over the sample's window, the part inside the run of
+  [t − Δt/2, t + Δt/2] (Δt the output interval): what an instrument that integrates over its
+  sample interval reports. A centred boxcar: gain sin(π f Δt)/(π f Δt), −3 dB at 0.443/Δt,
+  zero at multiples of 1/Δt and no delay, so the flexible links' ringing (5–10 kHz) reaches
+  the recorded band attenuated by at least π f Δt instead of folded in at full amplitude. A
+  quantity with a `source` is formed exactly from the integrator's state at the window's
+  ends: the difference of `source` over the window divided by the window's length (`per`
+  empty) or by the difference of `per` (the drive torque: drive work per crank angle);
+  without, it is the trapezoid rule over the accepted steps' ends, split at the window's
+  ends. The first and last samples average over the half window inside the run; with
+  `simulation.sampling: point` every quantity is a POINT sample.
 """
 
 from typing import NamedTuple
@@ -20,13 +36,20 @@ REVOLUTION_PEAK = "revolution peak"  # as PEAK, over the revolution ending at ea
 REVOLUTION_COUNT = "revolution count"  # counted by the integrator in each revolution
 DERIVED = "derived"  # computed from other quantities when the dataset is built
 
+# How a SAMPLE quantity's value at a sample time is taken (see the module's docstring).
+POINT = "point"
+INTERVAL_MEAN = "interval mean"
+SAMPLINGS = ("mean", "point")  # the scene's simulation.sampling: interval means, or points
+
 AXES = ["x", "y"]  # the `axis` coordinate (translational joints: across, along the guide)
 
 
 class Quantity(NamedTuple):
     """One output variable: its name in the dataset, its dimensions, units (CF), long name,
-    how it is recorded (SAMPLE, SECTION, ...) and, for a SECTION or a peak, the sampled
-    quantity it is taken from."""
+    how it is recorded (SAMPLE, SECTION, ...); for a SECTION or a peak, the sampled quantity
+    it is taken from (`source`). A SAMPLE quantity's `sampling` (POINT or INTERVAL_MEAN); an
+    interval mean with a `source` is that quantity's difference over the window per the
+    window's length, or per the difference of `per`."""
 
     name: str
     dims: tuple[str, ...]
@@ -34,6 +57,8 @@ class Quantity(NamedTuple):
     long_name: str
     recorded: str
     source: str = ""
+    sampling: str = POINT
+    per: str = ""
 
 
 class Coordinate(NamedTuple):
@@ -52,7 +77,7 @@ COORDINATES = (
     Coordinate("revolution", "crank revolutions completed at the section", "1"),
 )
 
-_PEAK = "over every accepted step and sample"
+_PEAK = "over every accepted step's end and every sample time (point values)"
 _REVOLUTION = f"{_PEAK} of the revolution ending at the section"
 
 # In the order of the sample row's columns and of the dataset's variables.
@@ -78,6 +103,8 @@ QUANTITIES = (
         "m s-2",
         "acceleration of the body's reference point",
         SAMPLE,
+        "velocity",
+        INTERVAL_MEAN,
     ),
     Quantity(
         "angle",
@@ -87,13 +114,39 @@ QUANTITIES = (
         SAMPLE,
     ),
     Quantity(
+        "angular_velocity",
+        ("time", "body"),
+        "rad s-1",
+        "rate of the body angle (beams: of the chord; modal links: of the floating frame)",
+        SAMPLE,
+    ),
+    Quantity(
+        "angular_acceleration",
+        ("time", "body"),
+        "rad s-2",
+        "second derivative of the body angle (beams: of the chord; modal links: of the frame)",
+        SAMPLE,
+        "angular_velocity",
+        INTERVAL_MEAN,
+    ),
+    Quantity(
         "deflection",
         ("time", "body"),
         "m",
         "mid-span transverse deflection from the chord of the end nodes (beams; 0 if rigid)",
         SAMPLE,
+        sampling=INTERVAL_MEAN,
     ),
-    Quantity("drive_torque", ("time",), "N m", "driving torque applied to the crank", SAMPLE),
+    Quantity(
+        "drive_torque",
+        ("time",),
+        "N m",
+        "driving torque applied to the crank",
+        SAMPLE,
+        "drive_work",
+        INTERVAL_MEAN,
+        per="crank_angle",
+    ),
     Quantity(
         "eccentricity",
         ("time", "joint", "axis"),
@@ -121,6 +174,7 @@ QUANTITIES = (
         "N",
         "contact normal force (sum over contact points)",
         SAMPLE,
+        sampling=INTERVAL_MEAN,
     ),
     Quantity(
         "friction_force",
@@ -128,6 +182,7 @@ QUANTITIES = (
         "N",
         "contact friction force along the tangent (sum over contact points)",
         SAMPLE,
+        sampling=INTERVAL_MEAN,
     ),
     Quantity(
         "in_contact",
@@ -202,6 +257,22 @@ QUANTITIES = (
         "acceleration",
     ),
     Quantity(
+        "peak_angular_velocity",
+        ("body",),
+        "rad s-1",
+        f"largest |angular velocity| {_PEAK}",
+        PEAK,
+        "angular_velocity",
+    ),
+    Quantity(
+        "peak_angular_acceleration",
+        ("body",),
+        "rad s-2",
+        f"largest |angular acceleration| {_PEAK}",
+        PEAK,
+        "angular_acceleration",
+    ),
+    Quantity(
         "peak_drive_torque",
         (),
         "N m",
@@ -231,6 +302,22 @@ QUANTITIES = (
         f"largest |acceleration| {_REVOLUTION}",
         REVOLUTION_PEAK,
         "acceleration",
+    ),
+    Quantity(
+        "revolution_peak_angular_velocity",
+        ("revolution", "body"),
+        "rad s-1",
+        f"largest |angular velocity| {_REVOLUTION}",
+        REVOLUTION_PEAK,
+        "angular_velocity",
+    ),
+    Quantity(
+        "revolution_peak_angular_acceleration",
+        ("revolution", "body"),
+        "rad s-2",
+        f"largest |angular acceleration| {_REVOLUTION}",
+        REVOLUTION_PEAK,
+        "angular_acceleration",
     ),
     Quantity(
         "revolution_peak_drive_torque",
@@ -273,10 +360,31 @@ def shape(dims: tuple[str, ...], n_bodies: int, n_joints: int) -> tuple[int, ...
     return tuple(sizes[d] for d in dims)
 
 
-def attributes(name: str) -> dict[str, str]:
-    """The CF attributes (units, long_name) of a declared variable or coordinate."""
+def sampling_of(q: Quantity, sampling: str) -> str:
+    """How the SAMPLE quantity q is taken in a run whose simulation.sampling is `sampling`."""
+    return q.sampling if sampling == "mean" else POINT
+
+
+def bandwidth(how: str, interval: float) -> str:
+    """What a sample taken as `how` (POINT, INTERVAL_MEAN) every `interval` s passes."""
+    if how == INTERVAL_MEAN:
+        return (
+            f"centred boxcar of {interval:.6g} s: -3 dB at {0.443 / interval:.6g} Hz, "
+            f"zeros at multiples of {1 / interval:.6g} Hz, no delay"
+        )
+    return f"unfiltered: content above {0.5 / interval:.6g} Hz (Nyquist) folds into the band"
+
+
+def attributes(name: str, interval: float | None = None, sampling: str = "mean") -> dict[str, str]:
+    """The CF attributes (units, long_name) of a declared variable or coordinate; a SAMPLE
+    quantity's also say how it is sampled (`sampling`: POINT or INTERVAL_MEAN) and, given the
+    output `interval` (s) and the run's simulation.sampling, the `bandwidth` that passes."""
     if name in BY_NAME:
         q = BY_NAME[name]
-        return {"units": q.units, "long_name": q.long_name}
+        attrs = {"units": q.units, "long_name": q.long_name}
+        if q.recorded == SAMPLE and interval is not None:
+            how = sampling_of(q, sampling)
+            attrs.update(sampling=how, bandwidth=bandwidth(how, interval))
+        return attrs
     c = COORDINATE_BY_NAME[name]
     return {"units": c.units, "long_name": c.long_name} if c.units else {"long_name": c.long_name}

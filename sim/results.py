@@ -47,12 +47,15 @@ def decode_rows(rows: np.ndarray, bodies: list[str], joints: list[str]) -> dict[
     return out
 
 
-def annotate(ds: xr.Dataset) -> xr.Dataset:
-    """`ds` with the CF attributes (units, long_name) of `sim.quantities` on every declared
-    variable and coordinate it holds."""
+def annotate(ds: xr.Dataset, sampling: str) -> xr.Dataset:
+    """`ds` with the CF attributes of `sim.quantities` on every declared variable and
+    coordinate it holds: units, long_name, and for a sampled quantity how it was sampled
+    (`sampling`: the run's simulation.sampling, "mean" or "point") and its bandwidth."""
+    times = ds["time"].values
+    interval = float(times[1] - times[0]) if times.size > 1 else None
     for name in ds.variables:
         if name in BY_NAME or name in COORDINATE_BY_NAME:
-            ds[name].attrs.update(attributes(str(name)))
+            ds[name].attrs.update(attributes(str(name), interval, sampling))
     return ds
 
 
@@ -88,12 +91,6 @@ def energy_error_relative(data: xr.Dataset | dict[str, np.ndarray]) -> float:
     return float(abs(energy_balance(data)).max()) / energy_scale(data)
 
 
-def revolution_of(times: np.ndarray, period: float) -> np.ndarray:
-    """Revolution of each time (s): r for t in ((r - 1) T, r T], 0 for t = 0; the revolution
-    that ends at Poincaré section r."""
-    return np.ceil(times / period - 1e-9).astype(int).clip(min=0)
-
-
 def _peak_blocks(vector: np.ndarray, layout: dict) -> list[np.ndarray]:
     """The PEAK quantities' blocks of a peak vector (or of rows of them: leading axes kept)."""
     lead = vector.shape[:-1]
@@ -104,28 +101,16 @@ def _peak_blocks(vector: np.ndarray, layout: dict) -> list[np.ndarray]:
 
 
 def _revolution_peaks(
-    rev_peaks: np.ndarray,
-    rev_events: np.ndarray,
-    times: np.ndarray,
-    data: dict[str, np.ndarray],
-    n_sections: int,
-    period: float,
-    layout: dict,
+    rev_peaks: np.ndarray, rev_events: np.ndarray, n_sections: int, layout: dict
 ) -> dict[str, np.ndarray]:
-    """Per-revolution peaks over every accepted step (the integrator's `rev_peaks` rows) and
-    every sample of the revolution, as the whole-run peaks are; the part after the last
-    section (a fractional last revolution) is left out."""
-    steps = rev_peaks[:n_sections]
-    sampled = np.concatenate(
-        [np.abs(data[q.source]).reshape(len(times), -1) for q in recorded(PEAK)], axis=1
-    )
-    rev = revolution_of(times, period)
-    keep = rev < n_sections
-    merged = steps.copy()
-    np.maximum.at(merged, rev[keep], sampled[keep])
+    """Per-revolution peaks over every accepted step and output sample (the integrator's
+    `rev_peaks` rows), as the whole-run peaks are; the part after the last section (a
+    fractional last revolution) is left out."""
     out = {
         q.name: block
-        for q, block in zip(recorded(REVOLUTION_PEAK), _peak_blocks(merged, layout), strict=True)
+        for q, block in zip(
+            recorded(REVOLUTION_PEAK), _peak_blocks(rev_peaks[:n_sections], layout), strict=True
+        )
     }
     (events,) = recorded(REVOLUTION_COUNT)
     out[events.name] = rev_events[:n_sections].copy()
@@ -159,27 +144,19 @@ def build_dataset(
     }
     variables = {q.name: (q.dims, data[q.name]) for q in recorded(SAMPLE)}
     variables.update({q.name: (q.dims, sections[q.source]) for q in recorded(SECTION)})
-    # the largest |value| over the accepted steps (integrator) and the samples
+    # the largest |value| over the accepted steps' ends and the output samples' point values
+    # (the integrator's: a sample row holds interval means of the fast quantities)
     layout = peak_layout(len(bodies), len(joints))
-    for q, steps in zip(recorded(PEAK), _peak_blocks(peaks, layout), strict=True):
-        sampled = np.abs(data[q.source]).max(axis=0, initial=0.0)
-        variables[q.name] = (q.dims, np.maximum(steps, sampled))
+    for q, block in zip(recorded(PEAK), _peak_blocks(peaks, layout), strict=True):
+        variables[q.name] = (q.dims, block)
     variables["energy_error"] = (BY_NAME["energy_error"].dims, energy_balance(data))
     if rev_peaks is not None and rev_events is not None:
-        per_revolution = _revolution_peaks(
-            rev_peaks,
-            rev_events,
-            times,
-            data,
-            section_rows.shape[0],
-            float(provenance["crank_period"]),
-            layout,
-        )
+        per_revolution = _revolution_peaks(rev_peaks, rev_events, section_rows.shape[0], layout)
         variables.update({name: (BY_NAME[name].dims, v) for name, v in per_revolution.items()})
     # one construction: a Dataset grown a variable at a time aligns its indexes at every
     # step, which took 8 % of a 20-revolution rigid run (before ca28e38)
     ds = xr.Dataset(variables, coords=coords)
-    annotate(ds)
+    annotate(ds, scene["simulation"]["sampling"])
     ds.attrs.update(
         Conventions="CF-1.8",
         title=f"sim run of scene '{scene['name']}'",

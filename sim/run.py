@@ -28,8 +28,9 @@ from sim.model.system import (
 from sim.results import build_dataset, decode_rows, energy_balance, energy_error_relative
 from sim.solve import lockstep, stepping
 from sim.solve.dae import Work, make_work, state_size
+from sim.solve.means import make_means
 from sim.solve.methods import Dopri5, method_of
-from sim.solve.record import peak_width, record_row, row_width
+from sim.solve.record import peak_slots, peak_width, record_row, row_columns, row_width
 from sim.solve.state import CLOCK, TALLY, Buffers, Carry, Options, Trajectory, make_carry
 from sim.solve.status import (
     MAX_STEPS,
@@ -237,34 +238,45 @@ def prepare(
     clock = np.zeros(1, dtype=CLOCK)
     clock[0]["h"] = min(1e-5 * period, options.hmax)
     clock[0]["facold"] = 1e-4
+    # The integrator samples times in (t, t + h]; t = 0 is recorded here, and starts the
+    # first sample's window and the peaks.
+    assert state_size(system) == y.size
+    work = make_work(system)
+    out_rows = np.zeros((n_out, width))
+    sec_rows = np.zeros((sec_t.size, width))
+    for rows in (out_rows, sec_rows):
+        record_row(system, work, mem, 0.0, y, rows[0])
+    n_bodies, n_joints = len(layout.bodies), len(layout.clearance_joints)
+    sampling = scene["simulation"]["sampling"]
     buffers = Buffers(
         out_t=out_t,
-        out_rows=np.zeros((n_out, width)),
+        out_rows=out_rows,
         sec_t=sec_t,
-        sec_rows=np.zeros((sec_t.size, width)),
+        sec_rows=sec_rows,
         peaks=np.zeros(n_peaks),
+        peak_slots=peak_slots(n_bodies, n_joints),
         # one row per revolution (ending at each section), one more for what follows the last
         rev_peaks=np.zeros((sec_t.size + 1, n_peaks)),
         rev_events=np.zeros(sec_t.size + 1, dtype=np.int64),
+        means=make_means(out_rows[0], n_bodies, n_joints, windows=sampling == "mean"),
         step_ends=np.zeros(step_log),
     )
-    integ = Integration(
+    columns = row_columns(n_bodies, n_joints)
+    for peaks in (buffers.peaks, buffers.rev_peaks[0]):
+        stepping.update_peaks(out_rows[0], columns, buffers.peak_slots, n_bodies, n_joints, peaks)
+    tally = np.zeros(1, dtype=TALLY)
+    tally[0]["outputs"] = tally[0]["sections"] = 1
+    return Integration(
         system=system,
         layout=layout,
-        work=make_work(system),
+        work=work,
         carry=make_carry(system.n, system.m),
         trajectory=Trajectory(y=y, mem=mem, clock=clock),
         options=options,
         buffers=buffers,
-        tally=np.zeros(1, dtype=TALLY),
+        tally=tally,
         assembly_branch=assembly.branch,
     )
-    # The integrator samples times in (t, t + h]; t = 0 is recorded here.
-    assert state_size(system) == y.size
-    for rows, count in ((buffers.out_rows, "outputs"), (buffers.sec_rows, "sections")):
-        record_row(system, integ.work, integ.mem, 0.0, y, rows[0])
-        integ.tally[0][count] = 1
-    return integ
 
 
 def _busiest_joint(integ: Integration) -> str | None:

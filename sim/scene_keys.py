@@ -11,6 +11,8 @@ import math
 from dataclasses import dataclass, replace
 from typing import Any
 
+from sim.quantities import SAMPLINGS
+
 
 class _NoDefault:
     """Marks a key without a default (None is a default: null, computed)."""
@@ -341,6 +343,14 @@ SIMULATION = {
         "rigid model's accelerations), or straight and unstressed; unused "
         "without them",
         choices=("quasi-static", "straight"),
+    ),
+    "sampling": _opt(
+        "str",
+        "mean",
+        "mean: the fast quantities (accelerations, drive torque, contact forces, deflections) "
+        "are recorded as means over each sample's window, free of aliasing; point: every "
+        "quantity is its value at the sample time (sim.quantities says which is which)",
+        choices=SAMPLINGS,
     ),
 }
 SOLVER = {

@@ -13,12 +13,14 @@ CLEARANCES = ["joints.A.clearance=4e-4", "joints.B.clearance=4e-4"]
 
 
 def _scene(revolutions: float):
+    # point samples: values of the signal the peaks are taken over (interval means are not)
     return load_scene(
         "sixbar",
         [
             *CLEARANCES,
             f"simulation.revolutions={revolutions}",
             "simulation.output_per_revolution=40",
+            "simulation.sampling=point",
         ],
     )
 

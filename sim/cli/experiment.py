@@ -28,6 +28,7 @@ from sim.experiment.recording import (
 from sim.experiment.sensor import SensorSettings, load_sensor_settings
 from sim.experiment.synthesize import synthesize_recording
 from sim.provenance import library_versions_json
+from sim.quantities import POINT
 from sim.scene_keys import DRIVE, Field, check_option
 
 DEFAULT_SEED = 20240607
@@ -120,6 +121,13 @@ def run_synthesize(args: argparse.Namespace) -> int:
             f"coarse for the sensor's bandwidth_hz {sensor.bandwidth_hz:g} Hz (it must exceed "
             f"twice that); set simulation.output_per_revolution to at least {needed}"
         )
+    if scene["simulation"]["sampling"] != "mean":
+        raise ValueError(
+            f"simulation.sampling = '{scene['simulation']['sampling']}': the sensor model filters "
+            "samples, which must be free of aliasing (interval means); point samples fold the "
+            "ringing above the output rate into the sensor's band. Leave simulation.sampling "
+            "at its default, mean"
+        )
     dataset = simulate(scene)
     channel = DEFAULT_CHANNEL | {"body": args.body, "axis": args.axis}
     provenance = {
@@ -162,6 +170,12 @@ def simulated_channel(
             f"body '{channel['body']}', point '{channel['point']}', axis '{channel['axis']}'"
             f"{named}, but run file '{run_path}' has no body '{channel['body']}'; its bodies: "
             f"{', '.join(bodies)}. Set channel.body in the metadata to the body the sensor is on"
+        )
+    if run.acceleration.attrs.get("sampling") == POINT:
+        raise ValueError(
+            f"run file '{run_path}' records the acceleration as point samples "
+            "(simulation.sampling: point), which fold the ringing above the output rate into "
+            "the sensor's band; compare a run with simulation.sampling mean (the default)"
         )
     acceleration = run.acceleration.sel(body=channel["body"], axis=channel["axis"])
     return np.asarray(run.time.values, dtype=float), acceleration.values

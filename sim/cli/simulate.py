@@ -4,6 +4,7 @@ import argparse
 import sys
 
 from sim.cli.arguments import add_scene_arguments, check_output
+from sim.quantities import SAMPLINGS
 
 
 def _cmd_scene(args: argparse.Namespace) -> int:
@@ -19,7 +20,10 @@ def _cmd_run(args: argparse.Namespace) -> int:
     from sim.scene import load_scene
 
     check_output("--output", args.output)
-    scene = load_scene(args.scene, args.overrides)
+    overrides = list(args.overrides or [])
+    if args.sampling is not None:
+        overrides.append(f"simulation.sampling={args.sampling}")
+    scene = load_scene(args.scene, overrides)
     ds = simulate(scene, progress=not args.quiet, ideal=args.ideal, rigid=args.rigid)
     write_netcdf(ds, args.output)
     a = ds.attrs
@@ -47,6 +51,12 @@ def register(subparsers: argparse._SubParsersAction) -> None:
     run.add_argument("-o", "--output", required=True, help="output netCDF path")
     run.add_argument("--ideal", action="store_true", help="every joint ideal (reference)")
     run.add_argument("--rigid", action="store_true", help="every link rigid (reference)")
+    run.add_argument(
+        "--sampling",
+        choices=SAMPLINGS,
+        help="how the fast quantities are sampled: mean over each sample's window (the "
+        "scene's simulation.sampling, default mean) or point value at the sample time",
+    )
     run.add_argument("-q", "--quiet", action="store_true", help="no progress line")
     run.set_defaults(func=_cmd_run)
 

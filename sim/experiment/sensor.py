@@ -3,9 +3,17 @@
 The chain, in order: anti-alias low-pass (zero-phase Butterworth, see
 :mod:`sim.experiment.sampling` for why zero phase), sampling at the recorder's rate on the
 recorder's clock, which runs ahead of the simulation's by an unknown shift, gain error, offset
-error, additive white Gaussian noise, saturation at the sensor's range. The random parts
-(gain, offset, shift, noise) are drawn from ``numpy.random.default_rng(seed)`` in that fixed
-order, so the same seed gives the same output.
+error, additive white Gaussian noise, saturation at the sensor's range.
+
+A real sensor's chain filters the continuous signal before it samples. The model filters
+samples, so they must already be free of aliasing in the sensor's band: a run's acceleration
+recorded as interval means (`simulation.sampling: mean`, the default: each sample the mean over
+its window, a boxcar that attenuates the flexible links' 5–10 kHz ringing before it folds) at a
+rate well above the sensor's bandwidth (the experiment study: 4 kHz for a 500 Hz sensor). Point
+samples of a flexible run fold that ringing into the band, where no filter can remove it.
+
+The random parts (gain, offset, shift, noise) are drawn from
+``numpy.random.default_rng(seed)`` in that fixed order, so the same seed gives the same output.
 
 The default values are assumptions typical of an industrial piezoelectric or MEMS
 accelerometer read by a 2 kHz data acquisition card, not properties of the paper's rig (which

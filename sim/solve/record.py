@@ -2,12 +2,15 @@
 
 The quantities and their order are declared once, in `sim.quantities`; `column_layout`
 places them in the row, `write_row` fills it in that order (each block marked with its
-quantity's name) and `sim.results` decodes rows with the same layout.
+quantity's name) and `sim.results` decodes rows with the same layout. The compiled code that
+reads or writes single blocks (the interval means, `sim.solve.means`; the peaks,
+`sim.solve.stepping._update_peaks`) finds them by name: `RowColumns`, `PeakSlots`.
 """
 
 from collections.abc import Mapping
 from functools import cache
 from types import MappingProxyType
+from typing import NamedTuple
 
 import numpy as np
 
@@ -22,7 +25,7 @@ from sim.model.system import (
     OUT_PENETRATION,
     OUT_STATE,
 )
-from sim.quantities import PEAK, SAMPLE, recorded, shape
+from sim.quantities import BY_NAME, PEAK, SAMPLE, recorded, shape
 from sim.solve.dae import (
     SC_CONTACT_ENERGY,
     SC_DRIVE_TORQUE,
@@ -76,9 +79,55 @@ def peak_layout(n_bodies: int, n_joints: int) -> Layout:
     return _blocks(recorded(PEAK), n_bodies, n_joints, leading=0)
 
 
+class RowColumns(NamedTuple):
+    """First column, in a sample row, of each block the compiled code reads or writes by
+    name (`column_layout`)."""
+
+    crank_angle: int
+    velocity: int
+    acceleration: int
+    angular_velocity: int
+    angular_acceleration: int
+    deflection: int
+    drive_torque: int
+    normal_force: int
+    friction_force: int
+    drive_work: int
+
+
+@cache
+def row_columns(n_bodies: int, n_joints: int) -> RowColumns:
+    """The `RowColumns` of a system of n_bodies bodies and n_joints clearance joints."""
+    layout = column_layout(n_bodies, n_joints)
+    return RowColumns(**{name: layout[name][0] for name in RowColumns._fields})
+
+
+class PeakSlots(NamedTuple):
+    """First entry, in the vector of peaks (and each row of per-revolution peaks), of the
+    peak of each sampled quantity (`peak_layout`), named by that quantity."""
+
+    acceleration: int
+    angular_velocity: int
+    angular_acceleration: int
+    drive_torque: int
+    normal_force: int
+
+
+@cache
+def peak_slots(n_bodies: int, n_joints: int) -> PeakSlots:
+    """The `PeakSlots` of a system of n_bodies bodies and n_joints clearance joints."""
+    slots = {
+        BY_NAME[name].source: first for name, (first, _) in peak_layout(n_bodies, n_joints).items()
+    }
+    assert set(slots) == set(PeakSlots._fields), "sim.quantities' peaks and PeakSlots differ"
+    return PeakSlots(**slots)
+
+
 @kernel
 def reference_point(sys, b: int, x: np.ndarray, axis: int) -> float:
-    """Component `axis` of body b's reference point, applied to q, q̇ or q̈ (x)."""
+    """Component `axis` of body b's reference point, applied to q, q̇ or q̈ (x): a fixed
+    linear combination of coordinates, so the same map takes q̇ to the point's velocity and
+    q̈ to its acceleration."""
     acc = 0.0
     for k in range(4):
         acc += sys.ref_coef[b, k] * x[sys.ref_idx[b, k] + axis]
@@ -99,6 +148,96 @@ def beam_midspan_deflection(q: np.ndarray, sys, b: int) -> float:
 
 
 @kernel
+def body_angle_rates(sys, b: int, q, qd, qdd) -> tuple[float, float, float]:
+    """Body b's angle (rad), angular velocity (rad/s) and angular acceleration (rad/s²):
+    of its angle coordinate (rigid bodies; modal links: the floating frame's), or of the
+    chord d between a beam's end nodes, θ = atan2(d_y, d_x):
+    θ̇ = (d × ḋ)/|d|², θ̈ = (d × d̈)/|d|² − 2 (d · ḋ) θ̇ / |d|²."""
+    i0 = sys.ang_idx[b, 0]
+    if sys.body_is_beam[b] == 0:
+        return q[i0], qd[i0], qdd[i0]
+    i1 = sys.ang_idx[b, 1]
+    dx, dy = q[i1] - q[i0], q[i1 + 1] - q[i0 + 1]
+    vx, vy = qd[i1] - qd[i0], qd[i1 + 1] - qd[i0 + 1]
+    ax, ay = qdd[i1] - qdd[i0], qdd[i1 + 1] - qdd[i0 + 1]
+    d2 = dx * dx + dy * dy
+    rate = (dx * vy - dy * vx) / d2
+    return (
+        np.arctan2(dy, dx),
+        rate,
+        (dx * ay - dy * ax) / d2 - 2.0 * (dx * vx + dy * vy) * rate / d2,
+    )
+
+
+@kernel
+def _reference_points(sys, x: np.ndarray, row: np.ndarray, c: int) -> None:
+    """Every body's reference point applied to x (q, q̇ or q̈) into row[c:], (body, axis)."""
+    for b in range(sys.ref_idx.shape[0]):
+        for a in range(2):
+            row[c + 2 * b + a] = reference_point(sys, b, x, a)
+
+
+@kernel
+def _deflections(sys, q: np.ndarray, row: np.ndarray, c: int) -> None:
+    """Every body's mid-span deflection (0 for rigid bodies) into row[c:]."""
+    for b in range(sys.ref_idx.shape[0]):
+        row[c + b] = 0.0
+        if sys.body_is_beam[b] == 1:
+            row[c + b] = beam_midspan_deflection(q, sys, b)
+        elif sys.body_modal[b] >= 0:
+            row[c + b] = modal_midspan_deflection(sys, sys.body_modal[b], q)
+
+
+@kernel
+def _joint_output(work, out: int, row: np.ndarray, c: int) -> None:
+    """Every clearance joint's contact output `out` (OUT_*) into row[c:]."""
+    for j in range(work.jout.shape[0]):
+        row[c + j] = work.jout[j, out]
+
+
+@kernel
+def crank_angle(sys, q: np.ndarray) -> float:
+    """The driven crank's angle (rad; 0 without a drive)."""
+    return q[sys.drive_coord] if sys.drive_coord >= 0 else 0.0
+
+
+@kernel
+def write_fast_values(sys, work, y: np.ndarray, cols, row: np.ndarray) -> None:
+    """Into row's blocks (`RowColumns` cols): the point values at the state y that work was
+    evaluated at of the quantities whose peaks are kept or whose interval means are a
+    quadrature over the steps: accelerations, angular velocities and accelerations,
+    deflections, drive torque, contact normal and friction forces."""
+    n = sys.n
+    q = y[:n]
+    qd = y[n : 2 * n]
+    _reference_points(sys, work.qdd, row, cols.acceleration)
+    for b in range(sys.ref_idx.shape[0]):
+        _, rate, acc = body_angle_rates(sys, b, q, qd, work.qdd)
+        row[cols.angular_velocity + b] = rate
+        row[cols.angular_acceleration + b] = acc
+    _deflections(sys, q, row, cols.deflection)
+    row[cols.drive_torque] = work.scalars[SC_DRIVE_TORQUE]
+    _joint_output(work, OUT_NORMAL_FORCE, row, cols.normal_force)
+    _joint_output(work, OUT_FRICTION_FORCE, row, cols.friction_force)
+
+
+@kernel
+def write_rate_sources(sys, y: np.ndarray, cols, row: np.ndarray) -> None:
+    """Into row's blocks (`RowColumns` cols): the state quantities whose differences form
+    interval means (`sim.quantities`' `source` and `per`), at the state y: reference-point
+    velocities, angular velocities, drive work and crank angle. No evaluation needed."""
+    n = sys.n
+    q = y[:n]
+    qd = y[n : 2 * n]
+    _reference_points(sys, qd, row, cols.velocity)
+    for b in range(sys.ref_idx.shape[0]):
+        _, rate, _ = body_angle_rates(sys, b, q, qd, qd)
+        row[cols.angular_velocity + b] = rate
+    row[cols.drive_work] = y[2 * n]
+    row[cols.crank_angle] = crank_angle(sys, q)
+
+
+@kernel
 def record_row(sys, work, mem: np.ndarray, t: float, y: np.ndarray, row: np.ndarray) -> int:
     """Evaluate the model at (t, y) and write one sample row; returns the
     right-hand side status."""
@@ -113,42 +252,34 @@ def record_row(sys, work, mem: np.ndarray, t: float, y: np.ndarray, row: np.ndar
 
 @kernel
 def write_row(sys, work, y: np.ndarray, row: np.ndarray) -> None:
-    """Write one sample row of the state y from the evaluation at y that work
-    holds (accelerations work.qdd, forces, contact outputs, constraint residual). One block
-    per sampled quantity of `sim.quantities`, in its order (tests/core/test_sample_row.py
-    checks each block against an independent reference)."""
+    """Write one sample row of point values at the state y from the evaluation at y that
+    work holds (accelerations work.qdd, forces, contact outputs, constraint residual). One
+    block per sampled quantity of `sim.quantities`, in its order
+    (tests/core/test_sample_row.py checks each block against an independent reference).
+    The interval means replace the fast quantities' blocks later (`sim.solve.means`)."""
     n = sys.n
     q = y[:n]
     qd = y[n : 2 * n]
     nb = sys.ref_idx.shape[0]
     c = 0
     # crank_angle
-    row[c] = q[sys.drive_coord] if sys.drive_coord >= 0 else 0.0
+    row[c] = crank_angle(sys, q)
     c += 1
     # position, velocity, acceleration
-    for src in range(3):
-        x = q if src == 0 else (qd if src == 1 else work.qdd)
-        for b in range(nb):
-            for a in range(2):
-                row[c] = reference_point(sys, b, x, a)
-                c += 1
-    # angle
+    _reference_points(sys, q, row, c)
+    _reference_points(sys, qd, row, c + 2 * nb)
+    _reference_points(sys, work.qdd, row, c + 4 * nb)
+    c += 6 * nb
+    # angle, angular_velocity, angular_acceleration
     for b in range(nb):
-        i0 = sys.ang_idx[b, 0]
-        if sys.body_is_beam[b] == 1:
-            i1 = sys.ang_idx[b, 1]
-            row[c] = np.arctan2(q[i1 + 1] - q[i0 + 1], q[i1] - q[i0])
-        else:
-            row[c] = q[i0]
-        c += 1
+        angle, rate, acc = body_angle_rates(sys, b, q, qd, work.qdd)
+        row[c + b] = angle
+        row[c + nb + b] = rate
+        row[c + 2 * nb + b] = acc
+    c += 3 * nb
     # deflection
-    for b in range(nb):
-        row[c] = 0.0
-        if sys.body_is_beam[b] == 1:
-            row[c] = beam_midspan_deflection(q, sys, b)
-        elif sys.body_modal[b] >= 0:
-            row[c] = modal_midspan_deflection(sys, sys.body_modal[b], q)
-        c += 1
+    _deflections(sys, q, row, c)
+    c += nb
     # drive_torque
     row[c] = work.scalars[SC_DRIVE_TORQUE]
     c += 1
@@ -177,9 +308,8 @@ def write_row(sys, work, y: np.ndarray, row: np.ndarray) -> None:
     c += 4 * nj
     # penetration, normal_force, friction_force, in_contact
     for out in (OUT_PENETRATION, OUT_NORMAL_FORCE, OUT_FRICTION_FORCE, OUT_STATE):
-        for j in range(nj):
-            row[c] = work.jout[j, out]
-            c += 1
+        _joint_output(work, out, row, c)
+        c += nj
     # constraint_violation
     viol = 0.0
     for i in range(sys.m):

@@ -88,8 +88,10 @@ class Buffers(NamedTuple):
     sec_t: np.ndarray  # (sections,) s, one Poincaré section per crank revolution
     sec_rows: np.ndarray  # (sections, width)
     peaks: np.ndarray  # (peaks,) max |·| over the run (sim.solve.stepping._update_peaks)
+    peak_slots: object  # sim.solve.record.PeakSlots: where each peak lies in `peaks`
     rev_peaks: np.ndarray  # (sections + 1, peaks) the same per revolution
     rev_events: np.ndarray  # (sections + 1,) contact events per revolution
+    means: object  # sim.solve.means.Means: the out_rows' interval means in progress
     # (capacity,) s, the end of every accepted step since tally.logged was last zeroed, for a
     # trajectory that follows this one (sim.solve.lockstep); empty: nothing is logged
     step_ends: np.ndarray

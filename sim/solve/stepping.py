@@ -13,8 +13,9 @@ The loop does the rest, identically for the explicit and the implicit method:
   crossing, where the flag flips and the onset rate δ̇⁻ is captured (the memory
   the Lankarani–Nikravesh law needs);
 - output samples and Poincaré sections at exact times from the continuous
-  extension; peaks over every accepted step's end, for the whole run and for
-  each revolution (the rows of `rev_peaks`, one per Poincaré section), and the
+  extension, the fast quantities' interval means over the steps (`sim.solve.means`);
+  peaks over every accepted step's end and every output sample, for the whole run and
+  for each revolution (the rows of `rev_peaks`, one per Poincaré section), and the
   contact events of each revolution (`rev_events`);
 - a penetration or constraint drift beyond a sane bound stops the run with the
   time and the joint.
@@ -27,11 +28,12 @@ import numpy as np
 
 from sim.jit import kernel
 from sim.model.clearance import face_switch_energy, gap, gap_depths
-from sim.model.system import OUT_NORMAL_FORCE, OUT_PENETRATION
+from sim.model.system import OUT_PENETRATION
 from sim.solve import methods
-from sim.solve.dae import SC_DRIVE_TORQUE, project_onto_tree, rhs
+from sim.solve.dae import project_onto_tree, rhs
 from sim.solve.dense import interpolate
-from sim.solve.record import reference_point
+from sim.solve.means import close_windows
+from sim.solve.record import write_fast_values
 from sim.solve.status import MAX_STEPS, NONFINITE, OK, PENETRATION, STEP_COLLAPSE, VIOLATION
 
 
@@ -143,22 +145,38 @@ def _flip_and_refresh(sys, work, carry, mem, g: int, t: float, y: np.ndarray, re
 
 
 @kernel
-def _update_peaks(sys, work, peaks: np.ndarray) -> None:
-    """Peaks (max |·|) of reference-point accelerations, drive torque and normal
-    forces from the evaluation at the end of the accepted step."""
+def _raise(row: np.ndarray, first: int, count: int, peaks: np.ndarray, slot: int) -> None:
+    """peaks[slot : slot + count] raised to |row[first : first + count]|."""
+    for k in range(count):
+        v = abs(row[first + k])
+        if v > peaks[slot + k]:
+            peaks[slot + k] = v
+
+
+@kernel
+def update_peaks(row: np.ndarray, cols, slots, nb: int, nj: int, peaks: np.ndarray) -> None:
+    """Raise the peaks (max |·|, in their `sim.solve.record.PeakSlots` slots) to the point
+    values of a row (blocks at its `RowColumns` cols) of nb bodies and nj clearance joints:
+    reference-point accelerations, angular velocities and accelerations, drive torque and
+    contact normal forces."""
+    _raise(row, cols.acceleration, 2 * nb, peaks, slots.acceleration)
+    _raise(row, cols.angular_velocity, nb, peaks, slots.angular_velocity)
+    _raise(row, cols.angular_acceleration, nb, peaks, slots.angular_acceleration)
+    _raise(row, cols.drive_torque, 1, peaks, slots.drive_torque)
+    _raise(row, cols.normal_force, nj, peaks, slots.normal_force)
+
+
+@kernel
+def _update_peaks(sys, row: np.ndarray, t: float, buffers, tally) -> None:
+    """The run's peaks and those of the revolution holding time t raised to the point values
+    of a row taken at t (an accepted step's end, or an output sample)."""
     nb = sys.ref_idx.shape[0]
-    for b in range(nb):
-        for a in range(2):
-            v = abs(reference_point(sys, b, work.qdd, a))
-            if v > peaks[2 * b + a]:
-                peaks[2 * b + a] = v
-    v = abs(work.scalars[SC_DRIVE_TORQUE])
-    if v > peaks[2 * nb]:
-        peaks[2 * nb] = v
-    for j in range(work.jout.shape[0]):
-        v = work.jout[j, OUT_NORMAL_FORCE]
-        if v > peaks[2 * nb + 1 + j]:
-            peaks[2 * nb + 1 + j] = v
+    nj = sys.rj_pts.shape[0] + sys.tj_off.shape[0]
+    cols = buffers.means.columns
+    slots = buffers.peak_slots
+    update_peaks(row, cols, slots, nb, nj, buffers.peaks)
+    r = _revolution_row(t, buffers.sec_t, tally, buffers.rev_peaks.shape[0])
+    update_peaks(row, cols, slots, nb, nj, buffers.rev_peaks[r])
 
 
 @kernel
@@ -194,7 +212,8 @@ def _check_state(sys, work, options, tally) -> int:
 @kernel
 def _sample(sys, work, mem, t0, h, buffers, tally, options) -> int:
     """Record every output sample, then every section, requested in (t0, t0 + h], as
-    the method records them (`sample`)."""
+    the method records them (`sample`): point values, which the peaks take; the interval
+    means replace the fast quantities' later (`sim.solve.means.close_windows`)."""
     # Round-off in t0 + h must not drop a sample that falls on the step's end.
     t1 = t0 + h + 1e-12 * max(1.0, abs(t0))
     while tally.outputs < buffers.out_t.shape[0] and buffers.out_t[tally.outputs] <= t1:
@@ -202,6 +221,7 @@ def _sample(sys, work, mem, t0, h, buffers, tally, options) -> int:
         s = methods.sample(sys, work, mem, t0, h, buffers.out_t[i], buffers.out_rows[i], options)
         if s != OK:
             return s
+        _update_peaks(sys, buffers.out_rows[i], buffers.out_t[i], buffers, tally)
         tally.outputs += 1
     while tally.sections < buffers.sec_t.shape[0] and buffers.sec_t[tally.sections] <= t1:
         i = tally.sections
@@ -302,9 +322,9 @@ def integrate(sys, work, carry, trajectory, t_end: float, options, buffers, tall
                 pending = g
                 continue
         # The step is accepted; work holds the evaluation at its end.
-        _update_peaks(sys, work, buffers.peaks)
-        row = _revolution_row(t + hs, buffers.sec_t, tally, buffers.rev_peaks.shape[0])
-        _update_peaks(sys, work, buffers.rev_peaks[row])
+        means = buffers.means
+        write_fast_values(sys, work, work.ynew, means.columns, means.end)
+        _update_peaks(sys, means.end, t + hs, buffers, tally)
         s = _check_state(sys, work, options, tally)
         if s != OK:
             return _fail(tally, s, t + hs)
@@ -312,6 +332,7 @@ def integrate(sys, work, carry, trajectory, t_end: float, options, buffers, tall
         s = _sample(sys, work, mem, t, hs, buffers, tally, options)
         if s != OK:
             return _fail(tally, s, t)
+        close_windows(sys, work, means, buffers.out_t, buffers.out_rows, t, hs)
         t += hs
         tally.accepted += 1
         _log_step(buffers, tally, t)

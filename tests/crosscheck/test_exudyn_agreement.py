@@ -24,12 +24,14 @@ CLEARANCES = ["joints.A.clearance=5e-4", "joints.B.clearance=5e-4"]
 def _scene(*sets: str, revolutions: float, per_rev: int) -> dict:
     """The six-bar at rtol 1e-6 (where the bounds below were measured; `sets` may tighten it):
     at the scene's default 1e-5, DOPRI5 leaves the beams' 5.9 kHz axial vibration 3 × as
-    strong (RMS 0.41 against Exudyn's 0.13 m/s² over the first quarter revolution)."""
+    strong (RMS 0.41 against Exudyn's 0.13 m/s² over the first quarter revolution). Point
+    samples, as Exudyn's sensors take (sim.crosscheck.run.run_both does the same)."""
     return load_scene(
         "sixbar",
         [
             "solver.rtol=1e-6",
             "solver.atol=1e-8",
+            "simulation.sampling=point",
             *sets,
             f"simulation.revolutions={revolutions}",
             f"simulation.output_per_revolution={per_rev}",

@@ -41,7 +41,7 @@ def fake_simulator(monkeypatch: pytest.MonkeyPatch) -> list:
     scene = {
         "bodies": {"slider": {}},
         "drive": {"speed_rpm": 60.0},
-        "simulation": {"output_per_revolution": 5000},
+        "simulation": {"output_per_revolution": 5000, "sampling": "mean"},
     }
     run_module = types.ModuleType("sim.run")
     run_module.simulate = lambda scene, progress=False: calls.append("simulate") or _run()

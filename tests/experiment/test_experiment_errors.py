@@ -194,3 +194,32 @@ def test_synthesize_refuses_bad_input_before_simulating(
     assert message.format(sensor=tmp_path / "sensor.yaml") in err
     assert "simulate" not in fake_simulator
     assert not (tmp_path / "s.csv").exists()
+
+
+def test_point_samples_are_refused_on_both_sides(
+    tmp_path: Path, make_run: Callable, fake_simulator: list, capsys, monkeypatch
+) -> None:
+    # The sensor model filters samples: they must be interval means (sim.quantities), which a
+    # run file's acceleration attributes say; a scene set to point samples is refused before
+    # it is simulated.
+    recording = _recording(tmp_path, make_run)
+    simulation = tmp_path / "run.nc"
+    run = make_run()
+    run.acceleration.attrs["sampling"] = "point"
+    run.to_netcdf(simulation)
+    assert _compare(recording, simulation, tmp_path / "out") == 2
+    assert f"run file '{simulation}' records the acceleration as point samples" in (
+        capsys.readouterr().err
+    )
+    import sim.scene
+
+    loaded = sim.scene.load_scene("sixbar")  # the fake: a scene output at 5000 a revolution
+    loaded["simulation"] = {**loaded["simulation"], "sampling": "point"}
+    monkeypatch.setattr("sim.scene.load_scene", lambda name, overrides=(): loaded)
+    argv = ["experiment", "synthesize", "sixbar", "-o", str(tmp_path / "s.csv")]
+    assert main(argv) == 2
+    assert "simulation.sampling = 'point': the sensor model filters samples" in (
+        capsys.readouterr().err
+    )
+    assert "simulate" not in fake_simulator
+    assert not (tmp_path / "s.csv").exists()

@@ -220,7 +220,9 @@ def test_modal_links_agree_with_ancf_beams():
     acceleration and drive torque agree within 1e-3 of their peaks (measured 3.4e-5 and
     5.5e-5), as they do with rigid links: at this speed bending moves them too little
     for these two signals to tell the link models apart, so the deflections carry the test."""
-    tight = ["solver.rtol=1e-7", "solver.atol=1e-9"]
+    # point samples: generalized-α's interval means carry the error of its continuous
+    # extension at the windows' ends (docs/model.md, "Sampling"), 5e-3 of the peaks here
+    tight = ["solver.rtol=1e-7", "solver.atol=1e-9", "simulation.sampling=point"]
     ancf = _run(*BEAMS, "solver.method=generalized_alpha", *tight, revolutions=1.0, per_rev=2000)
     reduced = _run(*MODAL, *tight, revolutions=1.0, per_rev=2000)
     rate = 1.0 / float(ancf.time[1] - ancf.time[0])
