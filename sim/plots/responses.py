@@ -1,4 +1,4 @@
-"""Slider and crank responses of a run against the ideal mechanism."""
+"""Output-channel and crank responses of a run against the ideal mechanism."""
 
 import numpy as np
 import xarray as xr
@@ -7,13 +7,14 @@ from matplotlib.ticker import MaxNLocator
 
 from sim.plots import style
 from sim.results import scene_of
+from sim.scene import output_channel
 
-#: (variable, body or None, axis or None, title of the panel)
+#: (variable, whether it is the output channel's, title of the panel)
 PANELS = (
-    ("position", "slider", "y", "slider displacement (along the guide)"),
-    ("velocity", "slider", "y", "slider velocity"),
-    ("acceleration", "slider", "y", "slider acceleration"),
-    ("drive_torque", None, None, "driving torque"),
+    ("position", True, "displacement"),
+    ("velocity", True, "velocity"),
+    ("acceleration", True, "acceleration"),
+    ("drive_torque", False, "driving torque"),
 )
 
 
@@ -68,8 +69,9 @@ def _zoom(ax, t: np.ndarray, sim: np.ndarray, ref: np.ndarray, width: float, how
 
 
 def plot_responses(run: xr.Dataset, ideal: xr.Dataset, *, revolutions: float = 2.0) -> Figure:
-    """Slider displacement (m), velocity (m/s), acceleration (m/s²) and driving torque (N·m)
-    against time (s) over the last ``revolutions`` crank revolutions, the run with clearances
+    """Displacement (m), velocity (m/s) and acceleration (m/s²) of the scene's output channel
+    (`output`, by default the slider along its guide) and the driving torque (N·m) against
+    time (s) over the last ``revolutions`` crank revolutions, the run with clearances
     over the ideal mechanism; the acceleration and torque panels carry an inset zoomed on the
     largest deviation (impacts), which says whether its samples are point values or interval
     means and their bandwidth (the variable's `sampling` and `bandwidth` attributes)."""
@@ -79,16 +81,16 @@ def plot_responses(run: xr.Dataset, ideal: xr.Dataset, *, revolutions: float = 2
         window = _window(run, revolutions)
         sim_ds, ref_ds = run.sel(time=window), ideal.sel(time=window)
         period = float(run.attrs["crank_period"])
-        for ax, (variable, body, axis, title) in zip(axes, PANELS, strict=True):
+        channel = output_channel(scene_of(run))
+        for ax, (variable, on_channel, title) in zip(axes, PANELS, strict=True):
+            body, axis = (channel.body, channel.axis) if on_channel else (None, None)
             sim = _series(sim_ds, variable, body, axis)
             ref = _series(ref_ds, variable, body, axis).interp(time=sim.time)
             ax.plot(ref.time, ref, color=style.IDEAL, lw=style.LINE, label="ideal")
             ax.plot(sim.time, sim, color=style.CLEARANCE, lw=style.LINE, label="clearance")
             prefix = f"{body} {axis}" if body else ""
             ax.set_title(style.label(run[variable], prefix=prefix), loc="left")
-            ax.set_ylabel(
-                f"{title.split(' (')[0]}\n[{style.unit_text(run[variable].attrs['units'])}]"
-            )
+            ax.set_ylabel(f"{title}\n[{style.unit_text(run[variable].attrs['units'])}]")
             if variable in ("acceleration", "drive_torque"):
                 how = _how_sampled(run[variable])
                 _zoom(ax, sim.time.values, sim.values, ref.values, 0.04 * period, how)
