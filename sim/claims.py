@@ -233,11 +233,22 @@ def claim_flagship_chaos(inputs: Inputs) -> dict:
     return _row(claim, verdict, evidence)
 
 
+#: the link model of the members' exponent (the study's `model_lyapunov.links`) in words, with
+#: what the model convergence measured of it (docs/exponent.md, "Model convergence")
+MEMBER_LINKS = {
+    "rigid": "rigid links",
+    "modal": (
+        "modal links of one bending mode each, which read about 15 % below four modes on "
+        "the flagship (docs/exponent.md)"
+    ),
+}
+
+
 def _members_text(row: pd.Series) -> str:
     """A case's model exponent over its members (a row of the model_exponent table)."""
     n = int(row.members)
     stderr = f"mean member standard error {row.mean_member_stderr_per_s:.2g} 1/s"
-    links = "rigid links" if row.links == "rigid" else "the run's links"
+    links = MEMBER_LINKS.get(row.links, "the run's links")
     span = f"{links}, {row.revolutions:g} revolutions, {row.transient_revolutions:g} transient"
     if n == 1:
         return (

@@ -191,6 +191,17 @@ def with_tolerances(scene: dict, tolerances: tuple[float, float]) -> dict:
     }
 
 
+def with_modal_links(scene: dict) -> dict:
+    """A copy of ``scene`` whose beams are modal links (with the scene's default modes, and
+    no axial modes: the explicit method resolves them), the link model whose exponent the
+    chaos studies take (docs/exponent.md, "Model convergence")."""
+    bodies = {
+        name: {**body, "kind": "modal", "axial_modes": 0} if body["kind"] == "beam" else body
+        for name, body in scene["bodies"].items()
+    }
+    return {**scene, "bodies": bodies, "solver": dict(scene["solver"])}
+
+
 def linkage_lyapunov(
     scene: dict,
     *,

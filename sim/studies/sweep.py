@@ -66,15 +66,24 @@ def simulate_point(
 
 def model_text(scene: dict) -> str:
     """The link model and integrator of a scene in words, e.g. ``rigid links, dopri5 rtol
-    1e-05`` or ``beams rod2, rod3, rod4 (2 elements), generalized_alpha rtol 1e-05``."""
-    beams = {name: body for name, body in scene["bodies"].items() if body["kind"] == "beam"}
+    1e-05``, ``beams rod2, rod3, rod4 (2 elements), generalized_alpha rtol 1e-05`` or
+    ``modal links rod2, rod3, rod4 (1 bending mode), dopri5 rtol 1e-06``."""
+    bodies = scene["bodies"]
+    beams = [name for name, body in bodies.items() if body["kind"] == "beam"]
+    modal = [name for name, body in bodies.items() if body["kind"] == "modal"]
+    parts = []
     if beams:
-        elements = sorted({int(body["elements"]) for body in beams.values()})
-        links = f"beams {', '.join(beams)} ({'/'.join(map(str, elements))} elements)"
-    else:
-        links = "rigid links"
+        elements = sorted({int(bodies[name]["elements"]) for name in beams})
+        parts.append(f"beams {', '.join(beams)} ({'/'.join(map(str, elements))} elements)")
+    if modal:
+        modes = sorted({int(bodies[name]["modes"]) for name in modal})
+        axial = sorted({int(bodies[name]["axial_modes"]) for name in modal})
+        size = f"{'/'.join(map(str, modes))} bending mode{'s' * (modes != [1])}"
+        if axial != [0]:
+            size += f", {'/'.join(map(str, axial))} axial"
+        parts.append(f"modal links {', '.join(modal)} ({size})")
     solver = scene["solver"]
-    return f"{links}, {solver['method']} rtol {solver['rtol']:g}"
+    return f"{'; '.join(parts) or 'rigid links'}, {solver['method']} rtol {solver['rtol']:g}"
 
 
 def point_file(label: str, value: float) -> str:

@@ -1,6 +1,8 @@
 """The model-based largest Lyapunov exponent of one ensemble member (Benettin on the linkage,
 sim.studies.model_lyapunov) over the study's `model_lyapunov` duration, written atomically with
-the member's index, seed and perturbation.
+the member's index, seed and perturbation. `links` takes it on the member's own links (`run`),
+on rigid links, or with every flexible link a modal link (`modal`, the scene's modes per link;
+docs/exponent.md, "Model convergence").
 
 The member's run file holds its scene as run, perturbation included (sim.run.simulate records
 the perturbed scene), so the exponent starts exactly where the member's run started."""
@@ -11,6 +13,7 @@ from sim.studies.model_lyapunov import (
     DEFAULT_TOLERANCES,
     linkage_lyapunov,
     model_lyapunov_dataset,
+    with_modal_links,
     with_tolerances,
 )
 
@@ -23,9 +26,12 @@ def main(sm) -> None:
     run = open_run(sm.input.run)
     tolerances = tuple(settings.get("tolerances", DEFAULT_TOLERANCES))
     scene = with_tolerances(scene_of(run), tolerances)
-    rigid = settings.get("links", "run") == "rigid" or bool(run.attrs.get("model_rigid", 0))
-    if rigid:
-        scene["solver"]["method"] = "dopri5"  # rigid links belong to the explicit method
+    links = settings.get("links", "run")
+    rigid = links == "rigid" or bool(run.attrs.get("model_rigid", 0))
+    if links == "modal":
+        scene = with_modal_links(scene)
+    if rigid or links == "modal":
+        scene["solver"]["method"] = "dopri5"  # rigid and modal links: the explicit method
     result = linkage_lyapunov(
         scene,
         revolutions=settings["revolutions"],

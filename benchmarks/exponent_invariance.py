@@ -1,0 +1,87 @@
+"""The model exponent against its settings and against the link model: the tables of
+docs/exponent.md.
+
+For one operating point of the six-bar and one link model, the largest Lyapunov exponent
+(`sim.studies.model_lyapunov.linkage_lyapunov`) at each setting given as RTOL:INTERVAL:D0
+(atol = rtol / 100; the interval in crank revolutions, as a fraction; d0 in m), one JSON line
+each with its standard error and the CPU seconds it took. The exponent belongs to the dynamics
+when no setting moves it beyond its standard error.
+
+Points: `flagship` (A and B 0.5 mm, 150 rpm), `slow` (0.2 mm, 30 rpm), `small` (0.1 mm,
+150 rpm). Links: `rigid`, `modal-B-A` (B bending and A axial modes per rod; generalized-alpha
+when A > 0, as the axial modes need it), `beam-E` (E ANCF elements per rod, generalized-alpha).
+
+Usage: python benchmarks/exponent_invariance.py POINT LINKS REVOLUTIONS TRANSIENT SETTING...
+e.g.   python benchmarks/exponent_invariance.py flagship modal-1-0 24 4 1e-6:1/32:1e-6
+"""
+
+import json
+import sys
+import time
+from fractions import Fraction
+
+from sim.scene import load_scene
+from sim.studies.model_lyapunov import linkage_lyapunov
+
+POINTS = {
+    "flagship": ["joints.A.clearance=0.5e-3", "joints.B.clearance=0.5e-3"],
+    "slow": ["joints.A.clearance=0.2e-3", "joints.B.clearance=0.2e-3", "drive.speed_rpm=30"],
+    "small": ["joints.A.clearance=0.1e-3", "joints.B.clearance=0.1e-3"],
+}
+RODS = ("rod2", "rod3", "rod4")
+
+
+def link_overrides(links: str) -> list[str]:
+    """The scene overrides of a link model named as in the module docstring."""
+    if links == "rigid":
+        return []
+    kind, *sizes = links.split("-")
+    if kind == "modal":
+        bending, axial = sizes
+        out = [
+            f"bodies.{rod}.{key}={value}"
+            for rod in RODS
+            for key, value in (("kind", "modal"), ("modes", bending), ("axial_modes", axial))
+        ]
+        return out + (["solver.method=generalized_alpha"] if axial != "0" else [])
+    if kind == "beam":
+        (elements,) = sizes
+        keys = ("kind=beam", f"elements={elements}")
+        return [f"bodies.{rod}.{key}" for rod in RODS for key in keys] + [
+            "solver.method=generalized_alpha"
+        ]
+    raise SystemExit(f"unknown link model '{links}': rigid, modal-B-A or beam-E")
+
+
+def main() -> None:
+    point, links, revolutions, transient, *settings = sys.argv[1:]
+    scene = load_scene("sixbar", POINTS[point] + link_overrides(links))
+    for setting in settings:
+        rtol, interval, d0 = setting.split(":")
+        cpu = time.process_time()
+        result = linkage_lyapunov(
+            scene,
+            revolutions=float(revolutions),
+            transient_revolutions=float(transient),
+            d0=float(d0),
+            interval_revolutions=float(Fraction(interval)),
+            tolerances=(float(rtol), float(rtol) / 100),
+            rigid=links == "rigid",
+        )
+        row = {
+            "point": point,
+            "links": links,
+            "rtol": float(rtol),
+            "interval_revolutions": interval,
+            "d0_m": float(d0),
+            "revolutions": float(revolutions),
+            "transient": float(transient),
+            "exponent_per_s": round(result.exponent, 1),
+            "stderr_per_s": round(result.stderr, 1),
+            "cpu_s": round(time.process_time() - cpu, 1),
+        }
+        print(json.dumps(row), flush=True)
+
+
+if __name__ == "__main__":
+    main()
