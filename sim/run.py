@@ -16,15 +16,16 @@ import xarray as xr
 from sim.ensemble import Member, perturbed
 from sim.model.assembly import Layout, build_system, crank_period, omega
 from sim.model.continuation import State, continued_state
+from sim.model.gaps import contact_memory
 from sim.model.initial import initial_state
 from sim.model.system import (
     OUT_NORMAL_FORCE,
     SLIDER_LAW_PAPER,
     System,
-    n_gaps,
 )
 from sim.results import build_dataset, decode_rows, energy_balance, energy_error_relative
 from sim.solve import stepping
+from sim.solve.control import ERR_OLD_MIN
 from sim.solve.dae import Work, make_work, state_size
 from sim.solve.methods import Dopri5, method_of
 from sim.solve.record import peak_width, record_row, row_width
@@ -163,7 +164,7 @@ def prepare(
     (sim.model.continuation; ContinuationError when it cannot be)."""
     system, layout = build_system(scene, ideal=ideal, rigid=rigid)
     q0, qd0 = initial_state(scene, system, layout)
-    mem = np.zeros((n_gaps(system), 3))
+    mem = contact_memory(system)
     if start is not None:
         q0, qd0, mem = continued_state(start, system, layout, q0, omega(scene))
     y = np.concatenate([q0, qd0, [0.0, 0.0]])
@@ -193,7 +194,7 @@ def prepare(
     )
     clock = np.zeros(1, dtype=CLOCK)
     clock[0]["h"] = min(1e-5 * period, options.hmax)
-    clock[0]["facold"] = 1e-4
+    clock[0]["facold"] = ERR_OLD_MIN
     buffers = Buffers(
         out_t=out_t,
         out_rows=np.zeros((n_out, width)),
