@@ -24,6 +24,7 @@ import numpy as np
 from sim.jit import kernel
 from sim.model.clearance import revolute_clearance_forces, translational_clearance_forces
 from sim.model.constraints import constraint_terms
+from sim.model.gaps import MEM_IN_CONTACT
 from sim.run import prepare
 from sim.scene import load_scene
 from sim.solve.dae import generalized_forces, no_rotations, project_onto_tree, rhs
@@ -106,7 +107,8 @@ def contact_state(revolutions: float = 5.0):
         t += period / 200
         if integ.advance(t) != OK:
             raise RuntimeError(f"integration failed at t = {t}")
-        if integ.mem[0, 0] > 0 and (integ.mem[1:, 0] > 0).any():
+        closed = integ.mem[:, MEM_IN_CONTACT] > 0
+        if closed[0] and closed[1:].any():
             return integ, t
     raise RuntimeError("no contact found")
 
@@ -119,7 +121,7 @@ def main() -> None:
     sys, work, mem, y = integ.system, integ.work, integ.mem, integ.y.copy()
     ydot = np.zeros_like(y)
     calls = args.calls
-    closed = [int(g) for g in np.nonzero(integ.mem[:, 0] > 0)[0]]
+    closed = [int(g) for g in np.nonzero(integ.mem[:, MEM_IN_CONTACT] > 0)[0]]
     print(
         f"rigid six-bar, A+B 0.5 mm, state at t = {t:.4f} s (closed gaps {closed}), "
         f"n = {sys.n} coordinates, m = {sys.m} constraints; µs per call, best of 3 × {calls}:"

@@ -17,16 +17,17 @@ from sim.ensemble import Member, perturbed
 from sim.kernel_cache import compile_integrator
 from sim.model.assembly import Layout, build_system, crank_period, omega
 from sim.model.continuation import State, continued_state
+from sim.model.gaps import contact_memory
 from sim.model.initial import HINTED, assemble, initial_state
 from sim.model.mobility import check_full_turn
 from sim.model.system import (
     OUT_NORMAL_FORCE,
     SLIDER_LAW_PAPER,
     System,
-    n_gaps,
 )
 from sim.results import build_dataset, decode_rows, energy_balance, energy_error_relative
 from sim.solve import lockstep, stepping
+from sim.solve.control import ERR_OLD_MIN
 from sim.solve.dae import Work, make_work, state_size
 from sim.solve.means import make_means
 from sim.solve.methods import Dopri5, method_of
@@ -208,7 +209,7 @@ def prepare(
         assembly.system, assembly.layout, assembly.q, period, scene["drive"]["initial_angle_deg"]
     )
     q0, qd0 = initial_state(scene, system, layout, assembly)
-    mem = np.zeros((n_gaps(system), 3))
+    mem = contact_memory(system)
     if start is not None:
         q0, qd0, mem = continued_state(start, system, layout, q0, omega(scene))
     y = np.concatenate([q0, qd0, [0.0, 0.0]])
@@ -237,7 +238,7 @@ def prepare(
     )
     clock = np.zeros(1, dtype=CLOCK)
     clock[0]["h"] = min(1e-5 * period, options.hmax)
-    clock[0]["facold"] = 1e-4
+    clock[0]["facold"] = ERR_OLD_MIN
     # The integrator samples times in (t, t + h]; t = 0 is recorded here, and starts the
     # first sample's window and the peaks.
     assert state_size(system) == y.size

@@ -16,20 +16,26 @@ otherwise every penetrating corner gets a Lankarani–Nikravesh force with its
 own onset memory (Flores et al., Multibody Syst. Dyn. 16, 2006; the paper's
 eqs. 10–18). Friction acts along the guide at each force's point.
 
-Memory `mem[g]` per gap g: (in-contact flag, onset rate δ̇⁻ in m/s, penetrated-
-while-apart mark), the first two written by the integrator at the located
-crossing. A stage that sees δ > 0 before the
-crossing was located uses its own δ̇ as δ̇⁻: the same value it tends to at the
-crossing.
-
-Gap numbering: revolute clearance j is gap j; translational clearance j owns
-gaps nr + 8j + 2i + w for corner i (0..3) and wall w (0: +n_g side, 1: −n_g side).
+The gaps (one per revolute clearance, one per slider corner and wall) and their
+contact memory are numbered and laid out in `sim.model.gaps`: the in-contact flag and
+the onset rate δ̇⁻ are written by the integrator at the located crossing. A stage that
+sees δ > 0 before the crossing was located uses its own δ̇ as δ̇⁻: the same value it
+tends to at the crossing.
 """
 
 import numpy as np
 
 from sim.jit import kernel, kernel_inline
 from sim.model.contact import friction_force, lankarani_nikravesh
+from sim.model.gaps import (
+    CORNERS_PER_SLIDER,
+    GAP_REVOLUTE,
+    MEM_GRAZED,
+    MEM_IN_CONTACT,
+    MEM_ONSET_RATE,
+    gap_owner,
+    slider_gap,
+)
 from sim.model.kinematics import (
     apply_point_force_rotated,
     body_rotation,
@@ -39,8 +45,6 @@ from sim.model.kinematics import (
     point_velocity_rotated,
 )
 from sim.model.system import (
-    CORNERS_PER_SLIDER,
-    GAPS_PER_SLIDER,
     OUT_FRICTION_FORCE,
     OUT_NORMAL_FORCE,
     OUT_PENETRATION,
@@ -140,19 +144,15 @@ def corner_gap(
 @kernel_inline
 def gap(sys, g: int, q: np.ndarray, qd: np.ndarray) -> tuple[float, float]:
     """Penetration δ (m, negative while apart) and its rate δ̇ (m/s) of gap g."""
-    nr = sys.rj_pts.shape[0]
-    if g < nr:
-        ex, ey = eccentricity(sys, g, q)
-        vx, vy = eccentricity_rate(sys, g, q, qd)
+    kind, j, i, w = gap_owner(sys, g)
+    if kind == GAP_REVOLUTE:
+        ex, ey = eccentricity(sys, j, q)
+        vx, vy = eccentricity_rate(sys, j, q, qd)
         e = np.hypot(ex, ey)
         rate = (ex * vx + ey * vy) / e if e > 0.0 else 0.0
-        return e - sys.rj[g].clearance, rate
-    k = g - nr
-    j = k // GAPS_PER_SLIDER
+        return e - sys.rj[j].clearance, rate
     c, s, nx, ny = slider_pose(sys, j, q)
-    delta, rate, _, _ = corner_gap(
-        sys, j, (k % GAPS_PER_SLIDER) // 2, 1.0 if k % 2 == 0 else -1.0, q, qd, c, s, nx, ny
-    )
+    delta, rate, _, _ = corner_gap(sys, j, i, 1.0 if w == 0 else -1.0, q, qd, c, s, nx, ny)
     return delta, rate
 
 
@@ -170,18 +170,21 @@ def gap_depths(sys, q: np.ndarray, out: np.ndarray) -> None:
             for w in range(2):
                 side = 1.0 if w == 0 else -1.0
                 delta, _, _ = corner_depth(sys, j, i, side, q, c, s, nx, ny)
-                out[nr + GAPS_PER_SLIDER * j + 2 * i + w] = delta
+                out[slider_gap(sys, j, i, w)] = delta
 
 
-@kernel
-def _flagged_edge(mem: np.ndarray, base: int, w: int) -> int:
-    """First corner i of an edge (i, i+1) whose two corners are both flagged in
-    contact with wall w, or -1. The contact mode (face or corners) follows the
+@kernel_inline
+def _flagged_edge(sys, mem: np.ndarray, j: int, w: int) -> int:
+    """First corner i of an edge (i, i+1) of slider j whose two corners are both flagged
+    in contact with wall w, or -1. The contact mode (face or corners) follows the
     flags, which change only at located crossings, so a stage can never switch
     laws before the integrator has found the switch."""
     for i in range(CORNERS_PER_SLIDER):
         nxt = (i + 1) % CORNERS_PER_SLIDER
-        if mem[base + 2 * i + w, 0] > 0.0 and mem[base + 2 * nxt + w, 0] > 0.0:
+        if (
+            mem[slider_gap(sys, j, i, w), MEM_IN_CONTACT] > 0.0
+            and mem[slider_gap(sys, j, nxt, w), MEM_IN_CONTACT] > 0.0
+        ):
             return i
     return -1
 
@@ -206,17 +209,13 @@ def face_switch_energy(sys, mem: np.ndarray, g: int, q: np.ndarray, qd: np.ndarr
     paper's laws switch there from one Hertz corner to the face law, whose
     energy K_face δa²/6 differs from the corner's K δa^(n+1)/(n+1). The jump is
     released as motion; the energy audit books it (negative: created)."""
-    nr = sys.rj_pts.shape[0]
-    if g < nr or sys.contact.slider_law == SLIDER_LAW_WINKLER:
+    kind, j, i, w = gap_owner(sys, g)
+    if kind == GAP_REVOLUTE or sys.contact.slider_law == SLIDER_LAW_WINKLER:
         return 0.0
-    k = g - nr
-    j = k // GAPS_PER_SLIDER
-    i = (k % GAPS_PER_SLIDER) // 2
-    w = k % 2
-    base = nr + GAPS_PER_SLIDER * j
     for nb in ((i + 1) % CORNERS_PER_SLIDER, (i + CORNERS_PER_SLIDER - 1) % CORNERS_PER_SLIDER):
-        if mem[base + 2 * nb + w, 0] > 0.0:
-            da, _ = gap(sys, base + 2 * nb + w, q, qd)
+        neighbour = slider_gap(sys, j, nb, w)
+        if mem[neighbour, MEM_IN_CONTACT] > 0.0:
+            da, _ = gap(sys, neighbour, q, qd)
             da = max(da, 0.0)
             return face_energy(sys, j, da, 0.0) - corner_energy(sys, j, da)
     return 0.0
@@ -225,12 +224,12 @@ def face_switch_energy(sys, mem: np.ndarray, g: int, q: np.ndarray, qd: np.ndarr
 @kernel
 def _onset_rate(mem: np.ndarray, g: int, rate: float) -> float:
     """δ̇⁻ of gap g: the memory captured at the crossing, or, before the crossing
-    was located, the current rate. The latter case is marked in mem[g, 2] so the
+    was located, the current rate. The latter case is marked MEM_GRAZED so the
     integrator can tell a contact that came and went inside one step (a graze
     its events would miss) from one that it will locate."""
-    if mem[g, 0] > 0.0:
-        return mem[g, 1]
-    mem[g, 2] = 1.0
+    if mem[g, MEM_IN_CONTACT] > 0.0:
+        return mem[g, MEM_ONSET_RATE]
+    mem[g, MEM_GRAZED] = 1.0
     return rate
 
 
@@ -342,15 +341,13 @@ def _winkler_edge(sys, j, w, q, qd, mem, gen, c, s, nx, ny):
 
     Returns (normal force N, friction N, dissipated power W, elastic energy J,
     deepest penetration m)."""
-    nr = sys.rj_pts.shape[0]
-    base = nr + GAPS_PER_SLIDER * j
     # Which long edge faces wall w: the one whose outward normal (body +y for
     # corners 0, 1, that is (−sin θ, cos θ)) points along side·n_g.
     side = 1.0 if w == 0 else -1.0
     a = 0 if side * (-s * nx + c * ny) > 0.0 else 2
     b = a + 1
-    ga = base + 2 * a + w
-    gb = base + 2 * b + w
+    ga = slider_gap(sys, j, a, w)
+    gb = slider_gap(sys, j, b, w)
     da, ra, aax, aay = corner_gap(sys, j, a, side, q, qd, c, s, nx, ny)
     db, rb, abx, aby = corner_gap(sys, j, b, side, q, qd, c, s, nx, ny)
     if da <= 0.0 and db <= 0.0:
@@ -371,9 +368,11 @@ def _winkler_edge(sys, j, w, q, qd, mem, gen, c, s, nx, ny):
         f_el = 0.5 * k_face * share * db
         u_el = k_face * share * db * db / 6.0
     rate = ra + frac * (rb - ra)
-    if mem[ga, 0] > 0.0 or mem[gb, 0] > 0.0:
+    in_a = mem[ga, MEM_IN_CONTACT] > 0.0
+    in_b = mem[gb, MEM_IN_CONTACT] > 0.0
+    if in_a or in_b:
         onset = max(
-            mem[ga, 1] if mem[ga, 0] > 0.0 else 0.0, mem[gb, 1] if mem[gb, 0] > 0.0 else 0.0
+            mem[ga, MEM_ONSET_RATE] if in_a else 0.0, mem[gb, MEM_ONSET_RATE] if in_b else 0.0
         )
     else:
         onset = _onset_rate(mem, ga if da > 0.0 else gb, rate)
@@ -410,7 +409,6 @@ def translational_clearance_forces(
     u_contact = 0.0
     for j in range(sys.tj_off.shape[0]):
         row = nr + j
-        base = nr + GAPS_PER_SLIDER * j
         total_fn = 0.0
         total_ft = 0.0
         deepest = 0.0
@@ -429,7 +427,7 @@ def translational_clearance_forces(
                 total_ft += ft
                 deepest = max(deepest, depth)
                 continue
-            first = _flagged_edge(mem, base, w)
+            first = _flagged_edge(sys, mem, j, w)
             if first >= 0:
                 second = (first + 1) % CORNERS_PER_SLIDER
                 da, _, aax, aay = corner_gap(sys, j, first, side, q, qd, c, s, nx, ny)
@@ -452,7 +450,7 @@ def translational_clearance_forces(
                 total_ft += ft
                 continue
             for i in range(CORNERS_PER_SLIDER):
-                g = base + 2 * i + w
+                g = slider_gap(sys, j, i, w)
                 delta, rate, ax, ay = corner_gap(sys, j, i, side, q, qd, c, s, nx, ny)
                 if delta <= 0.0:
                     continue

@@ -31,12 +31,15 @@ import numpy as np
 
 from sim.model.assembly import Layout
 from sim.model.clearance import eccentricity, gap, guide_frame
-from sim.model.initial import constraint_values, minimum_norm_newton
-from sim.model.system import (
-    GAPS_PER_SLIDER,
-    System,
-    n_gaps,
+from sim.model.gaps import (
+    GAP_REVOLUTE,
+    MEM_IN_CONTACT,
+    MEM_ONSET_RATE,
+    contact_memory,
+    gap_owner,
 )
+from sim.model.initial import constraint_values, minimum_norm_newton
+from sim.model.system import System
 
 NEWTON_TOL = 1e-12  # m (and rad): residual of Φ and of the clearance coordinates
 FD_STEP = 1e-7  # m or rad: central differences of the clearance coordinates
@@ -160,11 +163,12 @@ def continued_state(
     b = np.concatenate([nu, c_rate])
     qd = s * previous.qd
     qd -= np.linalg.lstsq(a, a @ qd - b, rcond=None)[0]
-    mem = np.zeros((n_gaps(system), previous.mem.shape[1]))
+    mem = contact_memory(system)
     nr = system.rj_pts.shape[0]
     for g in range(mem.shape[0]):
-        joint = g if g < nr else nr + (g - nr) // GAPS_PER_SLIDER
-        if previous.mem[g, 0] > 0.0 and gap(system, g, q, qd)[0] > 0.0:
+        kind, j, _, _ = gap_owner(system, g)
+        joint = j if kind == GAP_REVOLUTE else nr + j  # revolute clearances first
+        if previous.mem[g, MEM_IN_CONTACT] > 0.0 and gap(system, g, q, qd)[0] > 0.0:
             mem[g] = previous.mem[g]
-            mem[g, 1] *= k[2 * joint] * s
+            mem[g, MEM_ONSET_RATE] *= k[2 * joint] * s
     return q, qd, mem

@@ -100,9 +100,6 @@ BEAM = np.dtype(
     align=True,
 )
 
-CORNERS_PER_SLIDER = 4
-GAPS_PER_SLIDER = 8  # four corners, each against both walls
-
 
 class System(NamedTuple):
     """Arrays describing one planar multibody system (see the module docstring)."""
@@ -150,11 +147,6 @@ class System(NamedTuple):
     body_is_beam: np.ndarray  # (nbody,) 1 for beams
     body_modal: np.ndarray  # (nbody,) index of the modal link (md_*), −1 for other bodies
     tree: np.ndarray  # (hinges,) sim.model.tree.HINGE: minimal coordinates, empty if unused
-
-
-def n_gaps(system: System) -> int:
-    """Number of monitored contact gaps (one per revolute clearance, eight per slider)."""
-    return system.rj_pts.shape[0] + GAPS_PER_SLIDER * system.tj_off.shape[0]
 
 
 def n_clearance_joints(system: System) -> int:

@@ -34,6 +34,7 @@ from sim.jit import kernel, kernel_inline
 from sim.model.beams import beam_damping_power, beam_forces
 from sim.model.clearance import revolute_clearance_forces, translational_clearance_forces
 from sim.model.constraints import constraint_terms
+from sim.model.gaps import n_gaps
 from sim.model.system import (
     N_JOINT_OUT,
     POINT_MODAL,
@@ -41,7 +42,6 @@ from sim.model.system import (
     POINT_RIGID,
     System,
     n_clearance_joints,
-    n_gaps,
 )
 from sim.model.tree import tree_columns, tree_kinematics
 from sim.solve.linalg import cholesky_in_place, cholesky_solve_in_place

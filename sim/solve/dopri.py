@@ -10,6 +10,7 @@ and the code DOPRI5). The loop around it (events, sampling, step control) is
 import numpy as np
 
 from sim.jit import kernel
+from sim.solve.control import ERR_MIN, ERR_OLD_MIN
 from sim.solve.dae import adopt_tree_state, rhs
 from sim.solve.dense import hermite_coefficients, interpolate
 from sim.solve.record import record_row
@@ -29,9 +30,14 @@ E5, E6, E7 = -17253.0 / 339200.0, 22.0 / 525.0, -1.0 / 40.0
 D1, D3 = -12715105075.0 / 11282082432.0, 87487479700.0 / 32700410799.0
 D4, D5 = -10690763975.0 / 1880347072.0, 701980252875.0 / 199316789632.0
 D6, D7 = -1453857185.0 / 822651844.0, 69997945.0 / 29380423.0
-# Step-size controller (Hairer's DOPRI5 defaults: PI control with β = 0.04).
+# Step-size controller (Hairer's DOPRI5 defaults: PI control with β = 0.04): safety factor
+# against the next step's error exceeding the tolerance, the gain on the previous error, and
+# the exponent of this one, 1/5 − 0.75 β for the 5th-order step.
 SAFE, BETA = 0.9, 0.04
 EXPO1 = 0.2 - BETA * 0.75
+STRETCH = 1.01
+"""A step that would end within this factor of t_end is stretched to end on it: no sliver
+step is left over."""
 
 
 @kernel
@@ -109,12 +115,13 @@ def plan(t: float, h: float, t_end: float, buffers, tally) -> float:
     """The step to take from t given the step size h the controller wants: h, stretched
     or shortened to land on t_end when it ends within 1 % of it (samples come from the
     continuous extension, so steps need not end on them)."""
-    return t_end - t if t + 1.01 * h >= t_end else h
+    return t_end - t if t + STRETCH * h >= t_end else h
 
 
 @kernel
 def mark_grazes(sys, work, mem) -> None:
-    """Nothing to do: a stage evaluation that penetrated a gap has marked it in mem[g, 2]."""
+    """Nothing to do: a stage evaluation that penetrated a gap has marked it MEM_GRAZED
+    (`sim.model.gaps`)."""
 
 
 @kernel
@@ -159,4 +166,4 @@ def accept(sys, work, carry) -> None:
 def step_factor(err: float, err_old: float) -> float:
     """Ratio of the next step size to this one: PI control
     SAFE · err_old^β / err^(1/5 − 0.75 β) (Hairer & Wanner's DOPRI5)."""
-    return SAFE * max(err_old, 1e-4) ** BETA / max(err, 1e-10) ** EXPO1
+    return SAFE * max(err_old, ERR_OLD_MIN) ** BETA / max(err, ERR_MIN) ** EXPO1

@@ -45,6 +45,8 @@ import numpy as np
 from sim.jit import kernel
 from sim.model.clearance import gap
 from sim.model.constraints import constraint_terms
+from sim.model.gaps import MEM_GRAZED, MEM_IN_CONTACT
+from sim.solve.control import ERR_MIN
 from sim.solve.dae import (
     block_times,
     dissipated_power,
@@ -82,7 +84,19 @@ the contact's stiffness and damping, and simplified Newton then crawls (measured
 0.85 per iteration on the 30 rpm six-bar) or diverges."""
 MAX_REFRESH = 8
 """Iteration matrices re-formed within one Newton solve before the step is retried shorter."""
+SLOW_ITERATIONS = 3
+"""Newton iterations of an accepted step beyond which the iteration matrix is re-formed at
+the next step: the kept matrix no longer describes the forces well."""
 SAFE = 0.9
+"""Safety factor of the step-size ratio: aim below the tolerance so that the next step is
+rarely rejected."""
+ERROR_ORDER = 3.0
+"""Order in h of the local error estimate of q (the step-size ratio is err^(−1/ERROR_ORDER))."""
+GROWTH = 2.0
+"""The only growth of the step: by this factor, when the error allows it (`step_factor`)."""
+PLAN_ROUNDOFF = 1e-9
+"""Relative round-off in the number of equal steps to the next sample: a ratio a hair above
+a whole number must not add a step."""
 GRAZE_PROBES = (0.25, 0.5, 0.75)
 """Fractions of a step at which the continuous extension is probed for a graze."""
 
@@ -125,23 +139,26 @@ def plan(t: float, h: float, t_end: float, buffers, tally) -> float:
     to the next sample (or t_end), none longer than h. Samples record the step's own
     state (`sample`), so steps end on them."""
     left = min(t_end, next_sample(t, buffers, tally)) - t
-    return left / np.ceil(left / h * (1.0 - 1e-9))
+    return left / np.ceil(left / h * (1.0 - PLAN_ROUNDOFF))
 
 
 @kernel
 def mark_grazes(sys, work, mem) -> None:
-    """Mark in mem[g, 2] every open gap that the step's continuous extension penetrates
+    """Mark MEM_GRAZED every open gap that the step's continuous extension penetrates
     at GRAZE_PROBES. The Newton iterates are not points of the motion (an iterate that
     overshoots into a wall says nothing about the motion), so the marks they left are
     cleared first."""
     n = sys.n
     for g in range(mem.shape[0]):
-        mem[g, 2] = 0.0
+        mem[g, MEM_GRAZED] = 0.0
     for theta in GRAZE_PROBES:
         interpolate(work, theta, 2 * n, work.yint)
         for g in range(mem.shape[0]):
-            if mem[g, 0] == 0.0 and gap(sys, g, work.yint[:n], work.yint[n : 2 * n])[0] > 0.0:
-                mem[g, 2] = 1.0
+            if (
+                mem[g, MEM_IN_CONTACT] == 0.0
+                and gap(sys, g, work.yint[:n], work.yint[n : 2 * n])[0] > 0.0
+            ):
+                mem[g, MEM_GRAZED] = 1.0
 
 
 @kernel
@@ -322,7 +339,7 @@ def _step(sys, work, carry, mem, t: float, h: float, y: np.ndarray, rtol, atol, 
         jacobians += more_jacobians
     if s != OK or not converged:
         return s, np.inf, evaluations, jacobians
-    if iterations > 3:
+    if iterations > SLOW_ITERATIONS:
         carry.it_fresh[0] = 0.0  # converging slowly: refresh at the next step
     am, af, beta, _ = coefficients(rho_inf)
     for i in range(n):
@@ -401,7 +418,7 @@ def step_factor(err: float, err_old: float) -> float:
     spurious oscillation of the index-3 method's q̈ and λ (decaying like
     (−ρ∞)ⁿ), which stiff beams turn into visible acceleration noise; a constant
     step also lets Newton keep its factored iteration matrix."""
-    fac = SAFE * max(err, 1e-10) ** (-1.0 / 3.0)
+    fac = SAFE * max(err, ERR_MIN) ** (-1.0 / ERROR_ORDER)
     if err > 1.0:
         return fac
-    return 2.0 if fac >= 2.0 else 1.0
+    return GROWTH if fac >= GROWTH else 1.0

@@ -28,6 +28,7 @@ References:
 import numpy as np
 
 from sim.jit import kernel
+from sim.model.gaps import MEM_GRAZED
 from sim.solve import methods
 from sim.solve.dae import project_onto_tree, rhs
 from sim.solve.status import NONFINITE, OK, STEP_COLLAPSE
@@ -79,7 +80,7 @@ def follow(sys, work, carry, trajectory, step_ends, n_steps: int, options, buffe
             cap = np.inf
             continue
         hs = forced if forced > 0.0 else min(target - t, cap)
-        mem[:, 2] = 0.0
+        mem[:, MEM_GRAZED] = 0.0
         s, err = methods.step(sys, work, carry, mem, t, hs, y, options, tally)
         if s != OK or not err <= REFINE:
             tally.rejected += 1

@@ -10,7 +10,8 @@ the same signatures:
   work.ynew, its derivative in work.ydot_end, the continuous extension in work.dense, the
   evaluations counted in tally; returns (status, error scaled to the tolerance, ∞ when the
   step failed);
-- `mark_grazes(sys, work, mem)`: mark in mem[g, 2] the open gaps the step passed through;
+- `mark_grazes(sys, work, mem)`: mark MEM_GRAZED (`sim.model.gaps`) the open gaps the step
+  passed through;
 - `accept(sys, work, carry)`: make the step just accepted the start of the next;
 - `sample(sys, work, mem, t0, h, time, row)`: record the sample at `time` in (t0, t0 + h];
 - `step_factor(err, err_old)`: ratio of the next step size to this one.
@@ -30,6 +31,7 @@ from numba.extending import overload
 
 from sim.jit import kernel
 from sim.solve import dopri, galpha
+from sim.solve.control import FAC_MAX, FAC_MIN
 
 
 class Dopri5(NamedTuple):
@@ -56,10 +58,6 @@ _JIT = {"_nrt": False}  # as sim.jit.kernel
 def _module(options):
     """The method module of a numba Options type."""
     return _MODULES[options.types[options.fields.index("method")].instance_class]
-
-
-# Step-size bounds per step: at most this much smaller or larger.
-FAC_MIN, FAC_MAX = 0.2, 10.0
 
 
 @kernel

@@ -61,7 +61,8 @@ class Options(NamedTuple):
 
 class Trajectory(NamedTuple):
     """The state of an integration: y = (q, q̇, W_drive, E_dissipated), the contact memory
-    (gaps, 3: in-contact flag, onset rate δ̇⁻ in m/s, graze mark) and the CLOCK record."""
+    (gaps, MEM_COLUMNS: in-contact flag, onset rate δ̇⁻ in m/s, graze mark; named and
+    allocated by `sim.model.gaps`) and the CLOCK record."""
 
     y: np.ndarray
     mem: np.ndarray

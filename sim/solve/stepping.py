@@ -28,13 +28,28 @@ import numpy as np
 
 from sim.jit import kernel
 from sim.model.clearance import face_switch_energy, gap, gap_depths
+from sim.model.gaps import MEM_GRAZED, MEM_IN_CONTACT, MEM_ONSET_RATE
 from sim.model.system import OUT_PENETRATION
 from sim.solve import methods
+from sim.solve.control import ERR_OLD_MIN, T_ROUNDOFF
 from sim.solve.dae import project_onto_tree, rhs
 from sim.solve.dense import interpolate
 from sim.solve.means import close_windows
 from sim.solve.record import write_fast_values
 from sim.solve.status import MAX_STEPS, NONFINITE, OK, PENETRATION, STEP_COLLAPSE, VIOLATION
+
+LOCATE_ITERATIONS = 60
+"""Illinois iterations locating a crossing before the bracket's end is taken: a bound only
+(the method converges superlinearly, to LOCATE_TOL in far fewer)."""
+LOCATE_TOL = 1e-13
+"""Width of the bracket (a fraction of the step) at which a crossing counts as located: a
+few hundred round-offs of θ ≤ 1, below which the bracket cannot shrink reliably."""
+GRAZE_MIN_STEPS = 4.0
+"""A graze is resolved by shorter steps only while the step exceeds this many hmin: shorter
+ones would end the run in STEP_COLLAPSE for a contact too brief to matter."""
+FLIPS_PER_GAP = 2
+"""Flips at one instant per gap after which events are not looked for again at that instant:
+a gap a hair's breadth from its wall would otherwise flip for ever."""
 
 
 @kernel
@@ -53,10 +68,10 @@ def _locate(sys, work, g: int, d0: float, d1: float) -> float:
     a, b = 0.0, 1.0
     fa, fb = d0, d1
     side = 0
-    for _ in range(60):
+    for _ in range(LOCATE_ITERATIONS):
         c = (a * fb - b * fa) / (fb - fa)
         fc = _gap_at(sys, work, g, c)
-        if fc == 0.0 or b - a < 1e-13:
+        if fc == 0.0 or b - a < LOCATE_TOL:
             return c
         if (fc > 0.0) == (fb > 0.0):
             b, fb = c, fc
@@ -83,7 +98,7 @@ def _first_event(sys, work, mem, y: np.ndarray) -> tuple[int, float]:
     gap_depths(sys, work.ynew[:n], work.gaps)
     for g in range(work.gaps.shape[0]):
         d1 = work.gaps[g]
-        closed = mem[g, 0] > 0.0
+        closed = mem[g, MEM_IN_CONTACT] > 0.0
         if (d1 > 0.0) == closed or d1 == 0.0:
             continue
         d0, _ = gap(sys, g, y[:n], y[n : 2 * n])
@@ -106,7 +121,7 @@ def _grazed(sys, work, mem, options) -> bool:
     yn = work.ynew
     methods.mark_grazes(sys, work, mem, options)
     for g in range(mem.shape[0]):
-        if mem[g, 2] > 0.0 and mem[g, 0] == 0.0:
+        if mem[g, MEM_GRAZED] > 0.0 and mem[g, MEM_IN_CONTACT] == 0.0:
             if gap(sys, g, yn[:n], yn[n : 2 * n])[0] <= 0.0:
                 return True
     return False
@@ -121,14 +136,14 @@ def _flip(sys, mem, g: int, y: np.ndarray) -> None:
     q = y[:n]
     qd = y[n : 2 * n]
     jump = face_switch_energy(sys, mem, g, q, qd)
-    if mem[g, 0] > 0.0:
-        mem[g, 0] = 0.0
-        mem[g, 1] = 0.0
+    if mem[g, MEM_IN_CONTACT] > 0.0:
+        mem[g, MEM_IN_CONTACT] = 0.0
+        mem[g, MEM_ONSET_RATE] = 0.0
         y[2 * n + 1] += jump
     else:
         _, rate = gap(sys, g, q, qd)
-        mem[g, 0] = 1.0
-        mem[g, 1] = rate
+        mem[g, MEM_IN_CONTACT] = 1.0
+        mem[g, MEM_ONSET_RATE] = rate
         y[2 * n + 1] -= jump
 
 
@@ -186,7 +201,7 @@ def _revolution_row(t_step_end: float, sec_t, tally, rows: int) -> int:
     (sec_t[r - 1], sec_t[r]]; the last row (r = sec_t.size) what follows the last section.
     A DOPRI5 step that straddles a section is booked to the revolution it ends in."""
     r = tally.sections
-    if r < sec_t.shape[0] and sec_t[r] < t_step_end - 1e-12 * max(1.0, abs(t_step_end)):
+    if r < sec_t.shape[0] and sec_t[r] < t_step_end - T_ROUNDOFF * max(1.0, abs(t_step_end)):
         r += 1
     return min(r, rows - 1)
 
@@ -215,7 +230,7 @@ def _sample(sys, work, mem, t0, h, buffers, tally, options) -> int:
     the method records them (`sample`): point values, which the peaks take; the interval
     means replace the fast quantities' later (`sim.solve.means.close_windows`)."""
     # Round-off in t0 + h must not drop a sample that falls on the step's end.
-    t1 = t0 + h + 1e-12 * max(1.0, abs(t0))
+    t1 = t0 + h + T_ROUNDOFF * max(1.0, abs(t0))
     while tally.outputs < buffers.out_t.shape[0] and buffers.out_t[tally.outputs] <= t1:
         i = tally.outputs
         s = methods.sample(sys, work, mem, t0, h, buffers.out_t[i], buffers.out_rows[i], options)
@@ -283,7 +298,7 @@ def integrate(sys, work, carry, trajectory, t_end: float, options, buffers, tall
     forced = 0.0  # > 0: the next step must end exactly at a located event
     pending = -1  # the gap to flip at the end of the forced step
     flips_at_t = 0
-    while t_end - t > 1e-12 * max(1.0, abs(t)):
+    while t_end - t > T_ROUNDOFF * max(1.0, abs(t)):
         if tally.accepted + tally.rejected >= options.max_steps:
             return _fail(tally, MAX_STEPS, t)
         if forced > 0.0:
@@ -292,11 +307,12 @@ def integrate(sys, work, carry, trajectory, t_end: float, options, buffers, tall
             hs = min(h, hmax)
             wanted = hs
             hs = methods.plan(t, hs, t_end, buffers, tally, options)
-        mem[:, 2] = 0.0
+        mem[:, MEM_GRAZED] = 0.0
         s, err = methods.step(sys, work, carry, mem, t, hs, y, options, tally)
         if s != OK:
             err = np.inf
-        if err <= 1.0 and forced == 0.0 and hs > 4.0 * hmin and _grazed(sys, work, mem, options):
+        long_enough = hs > GRAZE_MIN_STEPS * hmin
+        if err <= 1.0 and forced == 0.0 and long_enough and _grazed(sys, work, mem, options):
             err = np.inf  # resolve the graze with shorter steps
         if not err <= 1.0:
             tally.rejected += 1
@@ -307,7 +323,7 @@ def integrate(sys, work, carry, trajectory, t_end: float, options, buffers, tall
                 tally.failure_step = h
                 return _fail(tally, STEP_COLLAPSE if s == OK else s, t)
             continue
-        if forced == 0.0 and flips_at_t <= 2 * work.gaps.shape[0]:
+        if forced == 0.0 and flips_at_t <= FLIPS_PER_GAP * work.gaps.shape[0]:
             g, theta = _first_event(sys, work, mem, y)
             if g >= 0:
                 if theta * hs <= hmin:
@@ -357,7 +373,7 @@ def integrate(sys, work, carry, trajectory, t_end: float, options, buffers, tall
         # A step cut short to land on t_end or a sample says nothing against
         # the step size that was wanted.
         h = max(grown, h) if hs < wanted else grown
-        facold = max(err, 1e-4)
+        facold = max(err, ERR_OLD_MIN)
     clock.t = t
     clock.h = h
     clock.facold = facold

@@ -15,6 +15,7 @@ import xarray as xr
 from sim.analysis.lyapunov import BenettinResult, Rescale, benettin
 from sim.model.assembly import crank_period, omega
 from sim.model.continuation import State
+from sim.model.gaps import MEM_COLUMNS, MEM_IN_CONTACT, MEM_ONSET_RATE
 from sim.run import Integration, Run, SimulationError, Snapshot, diagnose, prepare
 from sim.solve.state import CLOCK, Trajectory
 from sim.solve.status import OK
@@ -28,9 +29,6 @@ DEFAULT_ALIGNMENT_REVOLUTIONS = 2.0
 #: default integration tolerances (rtol, atol) of both trajectories, unless the scene's are
 #: tighter: the tightest whose exponent a tighter one does not move (see :func:`linkage_lyapunov`)
 DEFAULT_TOLERANCES = (1e-6, 1e-8)
-#: the contact memory's columns (sim.solve.state.Trajectory.mem): in-contact flag, onset rate
-#: δ̇⁻ (m/s), graze mark
-MEMORY_CLOSED, MEMORY_ONSET_RATE, MEMORY_COLUMNS = 0, 1, 3
 #: the fields of the integration's clock (sim.solve.state.CLOCK) packed with a trajectory
 CONTROLLER = ("t", "h", "facold")
 #: the reference's log of step ends: room for the accepted steps of one renormalisation
@@ -94,15 +92,15 @@ class LinkagePropagator:
     def _memory(self, column: int) -> slice:
         """The packed entries of one column of the contact memory, a gap a row."""
         n_y, n_mem = self.integration.y.size, self.integration.mem.size
-        return slice(n_y + column, n_y + n_mem, MEMORY_COLUMNS)
+        return slice(n_y + column, n_y + n_mem, MEM_COLUMNS)
 
     def _continuous(self, a: np.ndarray, b: np.ndarray) -> np.ndarray:
         """True for the entries in which two packed states differ continuously: q, q̇ and the
         onset rate δ̇⁻ of every gap in contact in both (it was taken from q̇ at the onset, and
         the Lankarani–Nikravesh force depends on it as on the state)."""
         continuous = self.mask()
-        closed = (a[self._memory(MEMORY_CLOSED)] > 0.0) & (b[self._memory(MEMORY_CLOSED)] > 0.0)
-        continuous[self._memory(MEMORY_ONSET_RATE)] = closed
+        closed = (a[self._memory(MEM_IN_CONTACT)] > 0.0) & (b[self._memory(MEM_IN_CONTACT)] > 0.0)
+        continuous[self._memory(MEM_ONSET_RATE)] = closed
         return continuous
 
     def distance(self, scene: dict) -> Callable[[np.ndarray, np.ndarray], float]:
@@ -112,7 +110,7 @@ class LinkagePropagator:
         n = self.integration.system.n
         weights[:n] = 1.0
         weights[n : 2 * n] = 1.0 / omega(scene)
-        weights[self._memory(MEMORY_ONSET_RATE)] = 1.0 / omega(scene)
+        weights[self._memory(MEM_ONSET_RATE)] = 1.0 / omega(scene)
 
         def distance(a: np.ndarray, b: np.ndarray) -> float:
             return float(np.linalg.norm((weights * (a - b))[self._continuous(a, b)]))

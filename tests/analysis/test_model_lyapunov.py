@@ -5,12 +5,10 @@ import pytest
 
 from sim.model.assembly import crank_period
 from sim.model.clearance import eccentricity
+from sim.model.gaps import MEM_COLUMNS, MEM_IN_CONTACT, MEM_ONSET_RATE
 from sim.run import simulate
 from sim.scene import load_scene
 from sim.studies.model_lyapunov import (
-    MEMORY_CLOSED,
-    MEMORY_COLUMNS,
-    MEMORY_ONSET_RATE,
     linkage_lyapunov,
     linkage_propagator,
     run_with_exponent,
@@ -194,8 +192,8 @@ def test_renormalisation_rescales_the_onset_rate_of_a_contact_both_share():
     scene = load_scene("sixbar", [*FLAGSHIP, "simulation.revolutions=1"])
     propagator = linkage_propagator(scene)
     reference = propagator.pack()
-    closed = propagator._memory(MEMORY_CLOSED)
-    rate = propagator._memory(MEMORY_ONSET_RATE)
+    closed = propagator._memory(MEM_IN_CONTACT)
+    rate = propagator._memory(MEM_ONSET_RATE)
     reference[closed] = [1.0] + [0.0] * (reference[closed].size - 1)
     reference[rate] = 0.0
     reference[rate.start] = 0.2
@@ -203,12 +201,12 @@ def test_renormalisation_rescales_the_onset_rate_of_a_contact_both_share():
     n = propagator.integration.system.n
     perturbed[:n] += 1e-5  # 1e-5 m or rad on every coordinate
     perturbed[rate.start] = 0.2 + 1e-3
-    perturbed[closed.start + MEMORY_COLUMNS] = 1.0  # the second gap closed in this one only
-    perturbed[rate.start + MEMORY_COLUMNS] = 0.5
+    perturbed[closed.start + MEM_COLUMNS] = 1.0  # the second gap closed in this one only
+    perturbed[rate.start + MEM_COLUMNS] = 0.5
     distance = propagator.distance(scene)
     rescaled = propagator.rescale(distance)(reference, perturbed, 1e-7)
     assert distance(reference, rescaled) == pytest.approx(1e-7, rel=1e-12)
     factor = 1e-7 / distance(reference, perturbed)
     assert rescaled[rate.start] == pytest.approx(0.2 + factor * 1e-3, rel=1e-12)
-    assert rescaled[rate.start + MEMORY_COLUMNS] == 0.5
-    assert rescaled[closed.start + MEMORY_COLUMNS] == 1.0
+    assert rescaled[rate.start + MEM_COLUMNS] == 0.5
+    assert rescaled[closed.start + MEM_COLUMNS] == 1.0

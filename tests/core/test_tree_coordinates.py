@@ -16,6 +16,7 @@ from sim.model.clearance import (
     revolute_clearance_forces,
     translational_clearance_forces,
 )
+from sim.model.gaps import MEM_IN_CONTACT
 from sim.model.system import CON_REVOLUTE
 from sim.run import prepare
 from sim.scene import load_scene
@@ -83,7 +84,8 @@ def _contact_state(*links: str) -> tuple[float, np.ndarray, np.ndarray]:
     while t < period:
         t += period / 200
         assert integ.advance(t) == OK
-        if integ.mem[0, 0] > 0 and (integ.mem[1:, 0] > 0).any():
+        closed = integ.mem[:, MEM_IN_CONTACT] > 0  # gap 0: joint A, then the slider's
+        if closed[0] and closed[1:].any():
             return t, integ.y.copy(), integ.mem.copy()
     raise AssertionError("no state with both joints in contact")
 

@@ -10,8 +10,15 @@ import pytest
 from sim.crosscheck import contact
 from sim.model.assembly import build_system
 from sim.model.clearance import revolute_clearance_forces, translational_clearance_forces
+from sim.model.gaps import (
+    CORNERS_PER_SLIDER,
+    MEM_IN_CONTACT,
+    MEM_ONSET_RATE,
+    contact_memory,
+    slider_gap,
+)
 from sim.model.initial import assemble
-from sim.model.system import N_JOINT_OUT, n_gaps
+from sim.model.system import N_JOINT_OUT
 from sim.scene import load_scene
 
 
@@ -41,11 +48,13 @@ def _theirs(system, layout, q, qd, mem) -> np.ndarray:
     revolute = contact.RevoluteClearance.from_system(system, 0, *points)
     centre = contact.Point(contact.RIGID, layout.offset["slider"], (0.0, 0.0))
     slider = contact.SliderClearance.from_system(system, 0, centre)
-    # the memories: gap 0 of ours is the revolute joint, gaps 1..8 the slider's corners
-    for law_, gaps in ((revolute, [0]), (slider, range(1, 9))):
+    # the memories: gap 0 of ours is the revolute joint; the slider's corner i against wall w
+    # is its gap 2 i + w (contact.SliderClearance.gaps)
+    slider_gaps = [slider_gap(system, 0, i, w) for i in range(CORNERS_PER_SLIDER) for w in (0, 1)]
+    for law_, gaps in ((revolute, [0]), (slider, slider_gaps)):
         for g_local, g in enumerate(gaps):
-            law_.memory.flag[g_local] = mem[g, 0] > 0
-            law_.memory.onset[g_local] = mem[g, 1]
+            law_.memory.flag[g_local] = mem[g, MEM_IN_CONTACT] > 0
+            law_.memory.onset[g_local] = mem[g, MEM_ONSET_RATE]
     return revolute.force(q, qd) + slider.force(q, qd)
 
 
@@ -66,9 +75,9 @@ def test_both_implementations_give_the_same_forces(sixbar):
         q[o_crank : o_crank + 2] += depth * np.array([math.cos(angle), math.sin(angle)])
         q[o_slider] += rng.uniform(-1.2, 1.2) * gap_b
         q[o_slider + 2] += rng.uniform(-1.5, 1.5) * 2 * gap_b / system.tj[0]["length"]
-        mem = np.zeros((n_gaps(system), 3))
-        mem[:, 0] = rng.integers(0, 2, mem.shape[0])
-        mem[:, 1] = rng.uniform(0.0, 0.5, mem.shape[0])
+        mem = contact_memory(system)
+        mem[:, MEM_IN_CONTACT] = rng.integers(0, 2, mem.shape[0])
+        mem[:, MEM_ONSET_RATE] = rng.uniform(0.0, 0.5, mem.shape[0])
         ours = _ours(system, q, qd, mem.copy())
         theirs = _theirs(system, layout, q, qd, mem)
         scale = max(np.max(np.abs(ours)), 1e-9)
