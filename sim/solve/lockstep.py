@@ -31,11 +31,16 @@ from sim.jit import kernel
 from sim.model.gaps import MEM_GRAZED
 from sim.solve import methods
 from sim.solve.dae import project_onto_tree, rhs
+from sim.solve.control import T_ROUNDOFF
 from sim.solve.status import NONFINITE, OK, STEP_COLLAPSE
-from sim.solve.stepping import _check_state, _fail, _first_event, _flip_and_refresh
+from sim.solve.stepping import (
+    FLIPS_PER_GAP,
+    _check_state,
+    _fail,
+    _first_event,
+    _flip_and_refresh,
+)
 
-#: relative round-off below which the follower counts a logged step end as reached
-REACHED = 1e-12
 #: the follower halves a logged step when its own error estimate exceeds this many times its
 #: tolerance: never while it tracks the reference (their errors differ by O(separation)), but
 #: where their motions part in kind, as when the follower's journal strikes and the
@@ -75,7 +80,7 @@ def follow(sys, work, carry, trajectory, step_ends, n_steps: int, options, buffe
     flips_at_t = 0
     while i < n_steps:
         target = step_ends[i]
-        if target - t <= REACHED * max(1.0, abs(t)):
+        if target - t <= T_ROUNDOFF * max(1.0, abs(t)):
             i += 1
             cap = np.inf
             continue
@@ -91,7 +96,7 @@ def follow(sys, work, carry, trajectory, step_ends, n_steps: int, options, buffe
                 tally.failure_step = cap
                 return _fail(tally, STEP_COLLAPSE if s == OK else s, t)
             continue
-        if forced == 0.0 and flips_at_t <= 2 * work.gaps.shape[0]:
+        if forced == 0.0 and flips_at_t <= FLIPS_PER_GAP * work.gaps.shape[0]:
             g, theta = _first_event(sys, work, mem, y)
             if g >= 0:
                 if theta * hs <= hmin:
