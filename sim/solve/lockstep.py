@@ -30,8 +30,8 @@ import numpy as np
 from sim.jit import kernel
 from sim.model.gaps import MEM_GRAZED
 from sim.solve import methods
-from sim.solve.dae import project_onto_tree, rhs
 from sim.solve.control import T_ROUNDOFF
+from sim.solve.dae import project_onto_tree, rhs
 from sim.solve.status import NONFINITE, OK, STEP_COLLAPSE
 from sim.solve.stepping import (
     FLIPS_PER_GAP,
