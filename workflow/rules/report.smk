@@ -5,6 +5,18 @@
 
 localrules:
     landing,
+    study,
+
+
+# One study's target: `snakemake -j2 results/<study>/done` builds every final file of the study
+# (config/README.md).
+rule study:
+    input:
+        study_done_targets,
+    output:
+        touch(PATHS["study_done"]),
+    log:
+        log_file("study"),
 
 
 rule landing:
