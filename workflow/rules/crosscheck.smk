@@ -1,4 +1,4 @@
-# The cross-check study (issue 8): every case run by sim and by Exudyn in one job (their wall
+# The cross-check study: every case run by sim and by Exudyn in one job (their wall
 # times compare), the agreement measured, and a summary table saying whether it ran. The case
 # rules are requested only when Exudyn is importable (EXUDYN, common.smk); the table always.
 
