@@ -313,8 +313,7 @@ def landing_inputs(wildcards):
     """Named inputs of the landing page (sim.studies.config.LANDING_INPUTS) and the
     experiment's recording metadata."""
     out = {
-        key: path(file, **names)
-        for key, file, names in resolver.landing_inputs(config, SETTINGS)
+        key: path(file, **names) for key, file, names in resolver.landing_inputs(config, SETTINGS)
     }
     if "experiment_comparison" in out:
         out["experiment_meta"] = landing_recording(wildcards)["meta"]

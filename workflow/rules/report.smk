@@ -30,6 +30,12 @@ rule landing:
             caption="../report/claims.rst",
             category="0 claims",
         ),
+    log:
+        log_file("landing"),
+    benchmark:
+        benchmark_file("landing")
+    conda:
+        "../envs/sim.yaml"
     params:
         quick=QUICK,
         studies=STUDIES,
@@ -37,11 +43,5 @@ rule landing:
         recording=landing_recording,
         statistics=bootstrap_settings,
         ensemble=DEFAULTS.get("ensemble", {}),
-    conda:
-        "../envs/sim.yaml"
-    log:
-        log_file("landing"),
-    benchmark:
-        benchmark_file("landing")
     script:
         "../scripts/landing.py"
