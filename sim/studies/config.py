@@ -327,6 +327,63 @@ def check_scenes(studies: Mapping[str, Mapping]) -> None:
             ) from None
 
 
+# ---------------------------------------------------------------- targets
+#: the final files (workflow/rules/paths.smk) of each analysis a study may list, per case
+CASE_TARGETS = {
+    "responses": ("responses",),
+    "trajectories": ("trajectories",),
+    "chaos": ("phase", "poincare", "lyapunov_csv", "lyapunov_html"),
+    "experiment": ("comparison_json",),
+}
+#: ... and per study
+STUDY_TARGETS = {
+    "peaks": (
+        "peaks_csv",
+        "peaks_html",
+        "revolutions",
+        "revolution_statistics_csv",
+        "revolution_statistics_html",
+    ),
+    "bifurcation": (
+        "bifurcation",
+        "bifurcation_figure",
+        "bifurcation_lyapunov_csv",
+        "bifurcation_lyapunov_html",
+    ),
+    "work_precision": ("work_precision_csv", "work_precision_html", "work_precision_figure"),
+    "extremes": ("extremes_csv", "extremes_html"),
+    "chaos": ("model_exponent_csv", "model_exponent_html"),
+    "crosscheck": ("crosscheck_csv", "crosscheck_html", "crosscheck_summary"),
+}
+
+
+def has_clearance(settings: Mapping, case: str) -> bool:
+    """Whether a case's overrides give some joint a clearance."""
+    return any(
+        key.endswith(".clearance") and float(value) > 0
+        for key, value in case_overrides(settings, case).items()
+    )
+
+
+def study_files(name: str, settings: Mapping, crosscheck: bool) -> list[tuple[str, dict]]:
+    """(file name, wildcards) of every final file of study `name`; `crosscheck`: whether
+    the cross-check's case files are made (Exudyn importable)."""
+    cases = case_names(settings)
+    out = []
+    for analysis in settings["analyses"]:
+        for case in cases:
+            out += [(f, {"study": name, "case": case}) for f in CASE_TARGETS.get(analysis, ())]
+        out += [(f, {"study": name}) for f in STUDY_TARGETS.get(analysis, ())]
+    if "crosscheck" in settings["analyses"] and crosscheck:
+        out += [("crosscheck_overlay", {"study": name, "case": case}) for case in cases]
+        out += [
+            ("crosscheck_statistics", {"study": name, "case": case})
+            for case in cases
+            if has_clearance(settings, case)
+        ]
+    return out
+
+
 # ---------------------------------------------------------------- the landing page's inputs
 class LandingInput(NamedTuple):
     """One named input of the landing page (sim.claims reads it as `<role>_<name>`): the

@@ -31,8 +31,28 @@ wildcard_constraints:
     member="[1-9][0-9]*",
 
 
-def study(name):
-    return SETTINGS[name]
+def setting(key):
+    """An adapter giving the study's resolved setting `key`."""
+    return lambda wildcards: SETTINGS[wildcards.study][key]
+
+
+def files_of_cases(file):
+    """An adapter giving the file `file` (paths.smk) of every case of the study."""
+    return lambda wildcards: paths_of_study(file, wildcards.study, case_names(wildcards.study))
+
+
+scene_name = setting("scene")
+transient = setting("transient")
+run_timeout = setting("timeout_s")
+sweep_settings = setting("sweep")
+model_lyapunov_settings = setting("model_lyapunov")
+runs_of_study = files_of_cases("run")
+ideals_of_study = files_of_cases("ideal")
+statuses_of_study = files_of_cases("status")
+
+
+def extreme_checks(wildcards):
+    return SETTINGS[wildcards.study].get("checks", {})
 
 
 def case_names(name):
@@ -64,24 +84,8 @@ def ideal_sets(wildcards):
     return format_sets(resolver.ideal_overrides(SETTINGS[wildcards.study], wildcards.case))
 
 
-def scene_name(wildcards):
-    return SETTINGS[wildcards.study]["scene"]
-
-
-def transient(wildcards):
-    return SETTINGS[wildcards.study]["transient"]
-
-
 def crank_rpm(wildcards):
     return case_overrides(wildcards.study, wildcards.case)["drive.speed_rpm"]
-
-
-def run_timeout(wildcards):
-    return SETTINGS[wildcards.study]["timeout_s"]
-
-
-def extreme_checks(wildcards):
-    return SETTINGS[wildcards.study].get("checks", {})
 
 
 def study_cases(wildcards):
@@ -118,18 +122,6 @@ def member_overrides(wildcards):
     return as_texts(resolver.member_overrides(SETTINGS[wildcards.study], wildcards.case))
 
 
-def runs_of_study(wildcards):
-    return paths_of_study("run", wildcards.study, case_names(wildcards.study))
-
-
-def ideals_of_study(wildcards):
-    return paths_of_study("ideal", wildcards.study, case_names(wildcards.study))
-
-
-def statuses_of_study(wildcards):
-    return paths_of_study("status", wildcards.study, case_names(wildcards.study))
-
-
 def ideal_reference_of_case(wildcards):
     """The ideal run a tolerant case is compared with: only for the study's
     `ideal_reference` case (clearance 0 must reproduce the ideal joint)."""
@@ -139,8 +131,6 @@ def ideal_reference_of_case(wildcards):
 
 
 # ---------------------------------------------------------------- sweeps
-def sweep_settings(wildcards):
-    return SETTINGS[wildcards.study]["sweep"]
 
 
 def sweep_parameter(wildcards):
@@ -171,8 +161,6 @@ def fidelity_settings(wildcards):
 
 
 # ---------------------------------------------------------------- model exponent over members
-def model_lyapunov_settings(wildcards):
-    return SETTINGS[wildcards.study]["model_lyapunov"]
 
 
 def model_exponent_run(wildcards):
@@ -204,14 +192,6 @@ def crosscheck_exudyn(wildcards):
 
 def crosscheck_lowpass(wildcards):
     return SETTINGS[wildcards.study]["crosscheck"]["lowpass_hz"]
-
-
-def crosscheck_has_clearance(name, case):
-    """Whether a cross-check case has a clearance joint (its statistics figure is made)."""
-    return any(
-        key.endswith(".clearance") and float(value) > 0
-        for key, value in case_overrides(name, case).items()
-    )
 
 
 def crosscheck_metrics(wildcards):
@@ -253,54 +233,14 @@ def sensor_option(wildcards):
 
 
 # ---------------------------------------------------------------- targets
-#: the final files of each analysis a study may list (config `analyses`), per case or per study
-CASE_TARGETS = {
-    "responses": ("responses",),
-    "trajectories": ("trajectories",),
-    "chaos": ("phase", "poincare", "lyapunov_csv", "lyapunov_html"),
-    "experiment": ("comparison_json",),
-}
-STUDY_TARGETS = {
-    "peaks": (
-        "peaks_csv",
-        "peaks_html",
-        "revolutions",
-        "revolution_statistics_csv",
-        "revolution_statistics_html",
-    ),
-    "bifurcation": (
-        "bifurcation",
-        "bifurcation_figure",
-        "bifurcation_lyapunov_csv",
-        "bifurcation_lyapunov_html",
-    ),
-    "work_precision": ("work_precision_csv", "work_precision_html", "work_precision_figure"),
-    "extremes": ("extremes_csv", "extremes_html"),
-    "chaos": ("model_exponent_csv", "model_exponent_html"),
-    "crosscheck": ("crosscheck_csv", "crosscheck_html", "crosscheck_summary"),
-}
-
-
 def study_targets(name):
-    """Every final file of one study."""
-    cases = case_names(name)
-    out = []
-    for analysis in SETTINGS[name]["analyses"]:
-        for case in cases:
-            out += [path(f, study=name, case=case) for f in CASE_TARGETS.get(analysis, ())]
-        out += [path(f, study=name) for f in STUDY_TARGETS.get(analysis, ())]
-    if has(name, "crosscheck") and EXUDYN:
-        out += paths_of_study("crosscheck_overlay", name, cases)
-        out += [
-            path("crosscheck_statistics", study=name, case=case)
-            for case in cases
-            if crosscheck_has_clearance(name, case)
-        ]
-    return out
+    """Every final file of one study (sim.studies.config.study_files)."""
+    files = resolver.study_files(name, SETTINGS[name], crosscheck=EXUDYN)
+    return [path(file, **wildcards) for file, wildcards in files]
 
 
 def study_done_targets(wildcards):
-    """Rule study_done: every final file of the study `wildcards.study`."""
+    """Rule study: every final file of the study `wildcards.study`."""
     return study_targets(wildcards.study)
 
 
