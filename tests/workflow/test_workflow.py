@@ -215,7 +215,7 @@ studies:
   fourbar:
     title: Crank-rocker four-bar, flexible coupler, 0.3 mm clearance at Q
     scene: fourbar.yaml
-    model: {links: beam, elements: 2, flexible_bodies: [coupler]}
+    model: {links: beam, elements: 2, flexible_bodies: [coupler], solver: {method: dopri5}}
     cases:
       clearance-0.3mm: {}
     analyses: [trajectories, chaos]
