@@ -28,6 +28,6 @@ report: landing_page()
 
 
 rule all:
+    default_target: True
     input:
         all_targets(),
-    default_target: True

@@ -40,7 +40,9 @@ from collections import defaultdict
 from pathlib import Path
 
 import yaml
+from snakemake.utils import validate
 
+from sim.studies import config as resolver
 from sim.studies.grid import sweep_grid
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -64,30 +66,10 @@ def shortened(full: float, fraction: float, floor: float) -> float:
     return full if full <= floor else max(floor, full * fraction)
 
 
-def full_revolutions(config: dict, name: str, case: dict) -> float:
-    """Revolutions of one case, by the workflow's precedence (workflow/rules/common.smk,
-    case_overrides): the case's override, the study's, the study's duration, the defaults'."""
-    entry, defaults = config["studies"][name], config["defaults"]
-    for overrides in (case, entry.get("overrides", {}), defaults.get("overrides", {})):
-        if "simulation.revolutions" in overrides:
-            return float(overrides["simulation.revolutions"])
-    return float(entry.get("revolutions", defaults["revolutions"]))
-
-
-def model_lyapunov(config: dict, name: str) -> dict:
-    """A study's model exponent settings on top of the defaults'."""
-    study = config["studies"][name].get("model_lyapunov", {})
-    return {**config["defaults"]["model_lyapunov"], **study}
-
-
-def member_length(config: dict, name: str) -> float:
-    """Revolutions of a study's further ensemble members at most (its `ensemble.revolutions` on
-    top of the defaults'; workflow/rules/common.smk, member_overrides), infinite if unset."""
-    ensemble = {
-        **config["defaults"].get("ensemble", {}),
-        **config["studies"][name].get("ensemble", {}),
-    }
-    return float(ensemble.get("revolutions", float("inf")))
+def full_revolutions(config: dict, name: str, case: str) -> float:
+    """Revolutions of one case, by the workflow's precedence (sim.studies.config)."""
+    settings = resolver.study_settings(config, name)
+    return float(resolver.case_overrides(settings, case)["simulation.revolutions"])
 
 
 def shorten(config: dict, index: int, every: int, last: bool) -> tuple[dict, dict[str, dict]]:
@@ -98,11 +80,14 @@ def shorten(config: dict, index: int, every: int, last: bool) -> tuple[dict, dic
     fraction, floor = PASSES[index]
     config = copy.deepcopy(config)
     config["quick"] = False
+    validate(config, str(ROOT / "workflow/schemas/config.schema.yaml"), set_default=True)
     durations = {}
     for name, entry in config["studies"].items():
         if not entry.get("enabled", True):
             continue
         entry.pop("quick", None)
+        if "case_grid" in entry:
+            entry["cases"] = resolver.grid_cases(entry.pop("case_grid"))
         if "sweep" in entry:
             values = sweep_grid(entry["sweep"])
             entry["sweep"].pop("range", None)
@@ -113,8 +98,9 @@ def shorten(config: dict, index: int, every: int, last: bool) -> tuple[dict, dic
             durations[name] = {"sweep": len(values) / len(kept), "batches": batches}
             continue
         cases = {}
+        settings = resolver.study_settings(config, name)
         for case, overrides in list(entry["cases"].items()):
-            full = full_revolutions(config, name, overrides)
+            full = full_revolutions(config, name, case)
             run = shortened(full, fraction, floor)
             if run == full and not last:
                 del entry["cases"][case]
@@ -124,7 +110,7 @@ def shorten(config: dict, index: int, every: int, last: bool) -> tuple[dict, dic
         if not entry["cases"]:
             entry["enabled"] = False
             continue
-        exponent = model_lyapunov(config, name)
+        exponent = settings["model_lyapunov"]
         run = shortened(exponent["revolutions"], fraction, EXPONENT_FLOORS[index])
         share = run / exponent["revolutions"]
         entry["model_lyapunov"] = {
@@ -135,7 +121,7 @@ def shorten(config: dict, index: int, every: int, last: bool) -> tuple[dict, dic
         durations[name] = {
             "cases": cases,
             "model_exponent": (exponent["revolutions"], run),
-            "member_length": member_length(config, name),
+            "member_length": float(settings["ensemble"].get("revolutions", float("inf"))),
         }
     return config, durations
 

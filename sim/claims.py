@@ -1,7 +1,7 @@
 """Each claim of docs/studies.md judged on the workflow's results (the report's landing page).
 
-Every judge takes `inputs`, a mapping of role to file (the landing rule's named inputs:
-`<role>_run`, `<role>_peaks`, `<role>_revolutions`, ...), and returns rows of
+Every judge takes `inputs`, a mapping of role to file (the landing rule's named inputs,
+`<role>_<name>` of sim.studies.config.LANDING_INPUTS, and `experiment_meta`), and returns rows of
 {claim, verdict, intervals, evidence}. Verdicts (sim.analysis.verdicts): "supported", "not
 supported", "mixed" (part of the claim holds and part is contradicted), "undecided" (a
 statistical claim that no interval decides against and not every one for), "not evaluated"
@@ -38,8 +38,14 @@ from sim.analysis.verdicts import (
 )
 from sim.results import scene_of
 from sim.scene import output_channel
+from sim.studies.config import LANDING_INPUTS
 
 Inputs = Mapping[str, str]
+
+#: the input names the judges read: the landing page's table, and the recording's metadata
+INPUT_NAMES = frozenset(
+    [f"{item.role}_{item.name}" for item in LANDING_INPUTS] + ["experiment_meta"]
+)
 
 
 def _row(claim: str, verdict: str, evidence: str, intervals: str = "") -> dict:
@@ -406,6 +412,9 @@ def claim_experiment(inputs: Inputs) -> tuple[dict, dict]:
 
 def judge_all(inputs: Inputs, boot: Bootstrap) -> tuple[list[dict], dict]:
     """Every claim's row, in the report's order, and the recording's metadata."""
+    unknown = sorted(set(inputs) - INPUT_NAMES)
+    if unknown:
+        raise ValueError(f"landing inputs {unknown}: not in sim.studies.config.LANDING_INPUTS")
     experiment, meta = claim_experiment(inputs)
     claims = [
         claim_responses(inputs),

@@ -208,3 +208,64 @@ def test_quick_workflow_end_to_end(tmp_path):
     html = (work / "report.html").read_text()
     assert "Claims of the paper" in html
     assert "Synthetic recording" in html or "Measured recording" in html
+
+
+FOURBAR_STUDY = """
+studies:
+  fourbar:
+    title: Crank-rocker four-bar, flexible coupler, 0.3 mm clearance at Q
+    scene: fourbar.yaml
+    model: {links: beam, elements: 2, flexible_bodies: [coupler], solver: {method: dopri5}}
+    cases:
+      clearance-0.3mm: {}
+    analyses: [trajectories, chaos]
+"""
+
+
+@pytest.mark.slow
+def test_quick_workflow_runs_a_four_bar_study(tmp_path):
+    """A study of a linkage that is not the six-bar (tests/workflow/fourbar.yaml: its own body
+    and joint names, no slider) through the quick workflow to its target: its figures and
+    tables are made, its coupler is the flexible link its study names, and no key of the
+    six-bar's studies (its link model's bodies, its operating point) reaches its runs."""
+    import xarray as xr
+
+    work = tmp_path / "repo"
+    work.mkdir()
+    for item in ("Snakefile", "config", "workflow", "report", "data"):
+        source = ROOT / item
+        if source.is_dir():
+            shutil.copytree(source, work / item)
+        else:
+            shutil.copy(source, work / item)
+    shutil.copy(ROOT / "tests/workflow/fourbar.yaml", work / "fourbar.yaml")
+    (work / "fourbar-study.yaml").write_text(FOURBAR_STUDY)
+    args = ("results/fourbar/done", "--configfile", "config/quick.yaml", "fourbar-study.yaml")
+    plan = _snakemake("-n", "--printshellcmds", *args, cwd=work)
+    assert plan.returncode == 0, plan.stderr[-4000:]
+    output = plan.stdout + plan.stderr
+    commands = [line for line in output.splitlines() if "sim run" in line]
+    assert commands and all("fourbar.yaml" in line for line in commands)
+    for six_bar_key in ("rod2", "slider", "joints.A", "joints.B", "drive.speed_rpm"):
+        assert not any(six_bar_key in line for line in commands), six_bar_key
+    done = _snakemake("-j2", *args, cwd=work, timeout=3600)
+    assert done.returncode == 0, done.stderr[-4000:]
+    study = work / "results/fourbar"
+    for name in (
+        "figures/trajectories_clearance-0.3mm.png",
+        "figures/phase_clearance-0.3mm.png",
+        "figures/poincare_clearance-0.3mm.png",
+        "tables/lyapunov_clearance-0.3mm.csv",
+        "tables/model_exponent.csv",
+        "run/clearance-0.3mm.nc",
+    ):
+        _check_file(study / name)
+    with xr.open_dataset(study / "run/clearance-0.3mm.nc") as run:
+        scene = json.loads(run.attrs["scene"])
+        assert list(run.joint.values) == ["Q"]  # the one clearance joint
+    assert set(scene["bodies"]) == {"crank", "coupler", "rocker"}
+    assert scene["bodies"]["coupler"]["kind"] == "beam"
+    assert scene["bodies"]["rocker"]["kind"] == "rigid"
+    # the scene's own operating point, not the six-bar studies' 150 rpm and friction 0.15
+    assert scene["drive"]["speed_rpm"] == 120.0
+    assert scene["contact"]["friction"] == 0.1

@@ -6,18 +6,18 @@ rule analyze:
         PATHS["run"],
     output:
         PATHS["analysis"],
-    params:
-        transient=transient,
-    conda:
-        "../envs/sim.yaml"
     log:
         log_file("analyze"),
     benchmark:
         benchmark_file("analyze")
+    conda:
+        "../envs/sim.yaml"
     threads: 1
     resources:
         mem_mb=2000,
         runtime=30,
+    params:
+        transient=transient,
     shell:
         "sim analyze {input} -o {output} --transient {params.transient} > {log} 2>&1"
 
@@ -30,19 +30,19 @@ rule model_exponent:
         kernels=model_exponent_kernels,
     output:
         PATHS["model_exponent"],
-    wildcard_constraints:
-        member="[0-9]+",
-    params:
-        settings=model_lyapunov_settings,
-    conda:
-        "../envs/sim.yaml"
     log:
         log_file("model_exponent"),
     benchmark:
         benchmark_file("model_exponent")
+    wildcard_constraints:
+        member="[0-9]+",
+    conda:
+        "../envs/sim.yaml"
     threads: 1
     resources:
         mem_mb=2000,
         runtime=240,
+    params:
+        settings=model_lyapunov_settings,
     script:
         "../scripts/model_exponent.py"

@@ -1,4 +1,4 @@
-# The cross-check study (issue 8): every case run by sim and by Exudyn in one job (their wall
+# The cross-check study: every case run by sim and by Exudyn in one job (their wall
 # times compare), the agreement measured, and a summary table saying whether it ran. The case
 # rules are requested only when Exudyn is importable (EXUDYN, common.smk); the table always.
 
@@ -21,22 +21,22 @@ rule crosscheck_case:
             category="{study}",
             subcategory="{case}",
         ),
+    log:
+        log_file("crosscheck_case"),
+    benchmark:
+        benchmark_file("crosscheck_case")
+    conda:
+        "../envs/sim.yaml"
+    threads: 1
+    resources:
+        mem_mb=4000,
+        runtime=240,
     params:
         scene=scene_name,
         overrides=crosscheck_overrides,
         exudyn=crosscheck_exudyn,
         lowpass_hz=crosscheck_lowpass,
         transient=transient,
-    conda:
-        "../envs/sim.yaml"
-    log:
-        log_file("crosscheck_case"),
-    benchmark:
-        benchmark_file("crosscheck_case")
-    threads: 1
-    resources:
-        mem_mb=4000,
-        runtime=240,
     script:
         "../scripts/crosscheck.py"
 
@@ -52,14 +52,14 @@ rule crosscheck_statistics:
             category="{study}",
             subcategory="{case}",
         ),
-    params:
-        transient=transient,
-    conda:
-        "../envs/sim.yaml"
     log:
         log_file("crosscheck_statistics"),
     benchmark:
         benchmark_file("crosscheck_statistics")
+    conda:
+        "../envs/sim.yaml"
+    params:
+        transient=transient,
     script:
         "../scripts/crosscheck.py"
 
@@ -75,13 +75,13 @@ rule crosscheck_table:
         ),
         html=PATHS["crosscheck_html"],
         summary=PATHS["crosscheck_summary"],
-    params:
-        cases=study_cases,
-    conda:
-        "../envs/sim.yaml"
     log:
         log_file("crosscheck_table"),
     benchmark:
         benchmark_file("crosscheck_table")
+    conda:
+        "../envs/sim.yaml"
+    params:
+        cases=study_cases,
     script:
         "../scripts/crosscheck.py"

@@ -8,21 +8,21 @@ rule synthesize_recording:
     output:
         csv=PATHS["synthetic_recording"],
         meta=PATHS["synthetic_meta"],
+    log:
+        log_file("synthesize_recording"),
+    benchmark:
+        benchmark_file("synthesize_recording")
+    conda:
+        "../envs/sim.yaml"
+    threads: 1
+    resources:
+        mem_mb=2000,
+        runtime=240,
     params:
         scene=scene_name,
         sets=synthetic_sets,
         seed=synthetic_seed,
         sensor=sensor_option,
-    conda:
-        "../envs/sim.yaml"
-    log:
-        log_file("synthesize_recording"),
-    benchmark:
-        benchmark_file("synthesize_recording")
-    threads: 1
-    resources:
-        mem_mb=2000,
-        runtime=240,
     shell:
         "sim experiment synthesize {params.scene} {params.sets} --seed {params.seed} "
         "{params.sensor} -o {output.csv} > {log} 2>&1"
@@ -48,19 +48,19 @@ rule compare_experiment:
             category="{study}",
             subcategory="{case}",
         ),
-    params:
-        rpm=crank_rpm,
-        out_dir=subpath(output.json, parent=True),
-    conda:
-        "../envs/sim.yaml"
     log:
         log_file("compare_experiment"),
     benchmark:
         benchmark_file("compare_experiment")
+    conda:
+        "../envs/sim.yaml"
     threads: 1
     resources:
         mem_mb=2000,
         runtime=30,
+    params:
+        rpm=crank_rpm,
+        out_dir=subpath(output.json, parent=True),
     shell:
         "sim experiment compare {input.recording} {input.run} --crank-rpm {params.rpm} "
         "--out-dir {params.out_dir} > {log} 2>&1"

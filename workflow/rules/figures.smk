@@ -27,12 +27,12 @@ rule responses:
             category="{study}",
             subcategory="{case}",
         ),
-    conda:
-        "../envs/sim.yaml"
     log:
         log_file("responses"),
     benchmark:
         benchmark_file("responses")
+    conda:
+        "../envs/sim.yaml"
     script:
         "../scripts/figures.py"
 
@@ -47,12 +47,12 @@ rule trajectories:
             category="{study}",
             subcategory="{case}",
         ),
-    conda:
-        "../envs/sim.yaml"
     log:
         log_file("trajectories"),
     benchmark:
         benchmark_file("trajectories")
+    conda:
+        "../envs/sim.yaml"
     script:
         "../scripts/figures.py"
 
@@ -67,12 +67,12 @@ rule phase:
             category="{study}",
             subcategory="{case}",
         ),
-    conda:
-        "../envs/sim.yaml"
     log:
         log_file("phase"),
     benchmark:
         benchmark_file("phase")
+    conda:
+        "../envs/sim.yaml"
     script:
         "../scripts/figures.py"
 
@@ -87,12 +87,12 @@ rule poincare:
             category="{study}",
             subcategory="{case}",
         ),
-    conda:
-        "../envs/sim.yaml"
     log:
         log_file("poincare"),
     benchmark:
         benchmark_file("poincare")
+    conda:
+        "../envs/sim.yaml"
     script:
         "../scripts/figures.py"
 
@@ -108,12 +108,12 @@ rule lyapunov_table:
             category="{study}",
             subcategory="{case}",
         ),
-    conda:
-        "../envs/sim.yaml"
     log:
         log_file("lyapunov_table"),
     benchmark:
         benchmark_file("lyapunov_table")
+    conda:
+        "../envs/sim.yaml"
     script:
         "../scripts/figures.py"
 
@@ -130,14 +130,14 @@ rule peaks_table:
             category="{study}",
             subcategory="tables",
         ),
-    params:
-        cases=study_cases,
-    conda:
-        "../envs/sim.yaml"
     log:
         log_file("peaks_table"),
     benchmark:
         benchmark_file("peaks_table")
+    conda:
+        "../envs/sim.yaml"
+    params:
+        cases=study_cases,
     script:
         "../scripts/figures.py"
 
@@ -154,16 +154,16 @@ rule revolution_table:
             category="{study}",
             subcategory="tables",
         ),
-    params:
-        cases=study_cases,
-        transient=transient,
-        statistics=bootstrap_settings,
-    conda:
-        "../envs/sim.yaml"
     log:
         log_file("revolution_table"),
     benchmark:
         benchmark_file("revolution_table")
+    conda:
+        "../envs/sim.yaml"
+    params:
+        cases=study_cases,
+        transient=transient,
+        statistics=bootstrap_settings,
     script:
         "../scripts/revolutions.py"
 
@@ -179,15 +179,15 @@ rule model_exponent_table:
             category="{study}",
             subcategory="tables",
         ),
-    params:
-        cases=study_cases,
-        statistics=bootstrap_settings,
-    conda:
-        "../envs/sim.yaml"
     log:
         log_file("model_exponent_table"),
     benchmark:
         benchmark_file("model_exponent_table")
+    conda:
+        "../envs/sim.yaml"
+    params:
+        cases=study_cases,
+        statistics=bootstrap_settings,
     script:
         "../scripts/model_exponent_table.py"
 
@@ -203,12 +203,12 @@ rule bifurcation_table:
             category="{study}",
             subcategory="tables",
         ),
-    conda:
-        "../envs/sim.yaml"
     log:
         log_file("bifurcation_table"),
     benchmark:
         benchmark_file("bifurcation_table")
+    conda:
+        "../envs/sim.yaml"
     script:
         "../scripts/figures.py"
 
@@ -223,15 +223,15 @@ rule bifurcation_figure:
             category="{study}",
             subcategory="figures",
         ),
-    params:
-        sweep=sweep_settings,
-        transient=transient,
-    conda:
-        "../envs/sim.yaml"
     log:
         log_file("bifurcation_figure"),
     benchmark:
         benchmark_file("bifurcation_figure")
+    conda:
+        "../envs/sim.yaml"
+    params:
+        sweep=sweep_settings,
+        transient=transient,
     script:
         "../scripts/figures.py"
 
@@ -254,15 +254,15 @@ rule work_precision:
             category="{study}",
             subcategory="figures",
         ),
-    params:
-        cases=study_cases,
-        fidelity=fidelity_settings,
-    conda:
-        "../envs/sim.yaml"
     log:
         log_file("work_precision"),
     benchmark:
         benchmark_file("work_precision")
+    conda:
+        "../envs/sim.yaml"
+    params:
+        cases=study_cases,
+        fidelity=fidelity_settings,
     script:
         "../scripts/figures.py"
 
@@ -278,11 +278,11 @@ rule extremes_table:
             category="{study}",
             subcategory="tables",
         ),
-    conda:
-        "../envs/sim.yaml"
     log:
         log_file("extremes_table"),
     benchmark:
         benchmark_file("extremes_table")
+    conda:
+        "../envs/sim.yaml"
     script:
         "../scripts/figures.py"

@@ -63,7 +63,8 @@ PATHS = {
     "extremes_html": f"{STUDY}/tables/extremes.html",
     "model_exponent_csv": f"{STUDY}/tables/model_exponent.csv",
     "model_exponent_html": f"{STUDY}/tables/model_exponent.html",
-    # stage 6: report (report.smk)
+    # stage 6: report (report.smk); a study's target, every final file of the study built
+    "study_done": f"{STUDY}/done",
     "landing": f"{RESULTS}/report/landing.rst",
     "claims": f"{RESULTS}/report/claims.csv",
 }
@@ -96,6 +97,7 @@ JOBS = {
     "extremes_table": "{study}/tables/extremes",
     "model_exponent_table": "{study}/tables/model_exponent",
     "landing": "report/landing",
+    "study": "{study}/done",
 }
 
 

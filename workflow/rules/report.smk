@@ -5,6 +5,18 @@
 
 localrules:
     landing,
+    study,
+
+
+# One study's target: `snakemake -j2 results/<study>/done` builds every final file of the study
+# (config/README.md).
+rule study:
+    input:
+        study_done_targets,
+    output:
+        touch(PATHS["study_done"]),
+    log:
+        log_file("study"),
 
 
 rule landing:
@@ -18,6 +30,12 @@ rule landing:
             caption="../report/claims.rst",
             category="0 claims",
         ),
+    log:
+        log_file("landing"),
+    benchmark:
+        benchmark_file("landing")
+    conda:
+        "../envs/sim.yaml"
     params:
         quick=QUICK,
         studies=STUDIES,
@@ -25,11 +43,5 @@ rule landing:
         recording=landing_recording,
         statistics=bootstrap_settings,
         ensemble=DEFAULTS.get("ensemble", {}),
-    conda:
-        "../envs/sim.yaml"
-    log:
-        log_file("landing"),
-    benchmark:
-        benchmark_file("landing")
     script:
         "../scripts/landing.py"

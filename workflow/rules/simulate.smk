@@ -10,14 +10,14 @@
 rule compile_kernels:
     output:
         temp(PATHS["kernels"]),
-    wildcard_constraints:
-        method="dopri5|generalized_alpha",
-    conda:
-        "../envs/sim.yaml"
     log:
         log_file("compile_kernels"),
     benchmark:
         benchmark_file("compile_kernels")
+    wildcard_constraints:
+        method="dopri5|generalized_alpha",
+    conda:
+        "../envs/sim.yaml"
     threads: 1
     resources:
         mem_mb=2000,
@@ -31,19 +31,19 @@ rule run:
         kernels=case_kernels,
     output:
         PATHS["run"],
-    params:
-        scene=scene_name,
-        sets=run_sets,
-    conda:
-        "../envs/sim.yaml"
     log:
         log_file("run"),
     benchmark:
         benchmark_file("run")
+    conda:
+        "../envs/sim.yaml"
     threads: 1
     resources:
         mem_mb=2000,
         runtime=240,
+    params:
+        scene=scene_name,
+        sets=run_sets,
     shell:
         "sim run {params.scene} -o {output} -q {params.sets} > {log} 2>&1"
 
@@ -53,20 +53,20 @@ rule run_member:
         kernels=case_kernels,
     output:
         PATHS["member"],
-    params:
-        scene=scene_name,
-        overrides=member_overrides,
-        draw=member_draw,
-    conda:
-        "../envs/sim.yaml"
     log:
         log_file("run_member"),
     benchmark:
         benchmark_file("run_member")
+    conda:
+        "../envs/sim.yaml"
     threads: 1
     resources:
         mem_mb=2000,
         runtime=240,
+    params:
+        scene=scene_name,
+        overrides=member_overrides,
+        draw=member_draw,
     script:
         "../scripts/run_member.py"
 
@@ -76,19 +76,19 @@ rule run_ideal:
         kernels=ideal_kernels,
     output:
         PATHS["ideal"],
-    params:
-        scene=scene_name,
-        sets=ideal_sets,
-    conda:
-        "../envs/sim.yaml"
     log:
         log_file("run_ideal"),
     benchmark:
         benchmark_file("run_ideal")
+    conda:
+        "../envs/sim.yaml"
     threads: 1
     resources:
         mem_mb=2000,
         runtime=30,
+    params:
+        scene=scene_name,
+        sets=ideal_sets,
     shell:
         "sim run {params.scene} -o {output} -q --ideal --rigid {params.sets} > {log} 2>&1"
 
@@ -99,20 +99,20 @@ rule run_tolerant:
         kernels=case_kernels,
     output:
         PATHS["status"],
+    log:
+        log_file("run_tolerant"),
+    benchmark:
+        benchmark_file("run_tolerant")
+    conda:
+        "../envs/sim.yaml"
+    threads: 1
+    resources:
+        mem_mb=2000,
+        runtime=60,
     params:
         scene=scene_name,
         sets=run_sets,
         timeout=run_timeout,
         checks=extreme_checks,
-    conda:
-        "../envs/sim.yaml"
-    log:
-        log_file("run_tolerant"),
-    benchmark:
-        benchmark_file("run_tolerant")
-    threads: 1
-    resources:
-        mem_mb=2000,
-        runtime=60,
     script:
         "../scripts/run_tolerant.py"

@@ -14,24 +14,24 @@ rule sweep_batch:
         kernels=sweep_kernels,
     output:
         directory(PATHS["sweep_batch"]),
+    log:
+        log_file("sweep_batch"),
+    benchmark:
+        benchmark_file("sweep_batch")
+    wildcard_constraints:
+        batch="[0-9]+",
+    conda:
+        "../envs/sim.yaml"
+    threads: 2
+    resources:
+        mem_mb=3000,
+        runtime=240,
     params:
         scene=scene_name,
         overrides=sweep_base_overrides,
         points=batch_points,
         sweep=sweep_settings,
         transient=transient,
-    wildcard_constraints:
-        batch="[0-9]+",
-    conda:
-        "../envs/sim.yaml"
-    log:
-        log_file("sweep_batch"),
-    benchmark:
-        benchmark_file("sweep_batch")
-    threads: 2
-    resources:
-        mem_mb=3000,
-        runtime=240,
     script:
         "../scripts/sweep_batch.py"
 
@@ -41,13 +41,13 @@ rule combine_sweep:
         batches=batch_dirs_of_study,
     output:
         PATHS["bifurcation"],
-    params:
-        parameter=sweep_parameter,
-    conda:
-        "../envs/sim.yaml"
     log:
         log_file("combine_sweep"),
     benchmark:
         benchmark_file("combine_sweep")
+    conda:
+        "../envs/sim.yaml"
+    params:
+        parameter=sweep_parameter,
     script:
         "../scripts/combine_sweep.py"

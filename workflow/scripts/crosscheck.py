@@ -1,4 +1,4 @@
-"""The cross-check study (issue 8): each case run by sim and by Exudyn in one job (same machine,
+"""The cross-check study: each case run by sim and by Exudyn in one job (same machine,
 same run, so their wall times compare), the agreement measured, and a summary table that says
 whether the cross-check ran. One function per rule of workflow/rules/crosscheck.smk."""
 

@@ -1,0 +1,451 @@
+"""The workflow's study resolver: the settings of every study from the workflow config
+(config/config.yaml, validated against workflow/schemas/config.schema.yaml with its defaults
+filled in), as pure functions of the config mapping.
+
+A study's settings are, later winning: the defaults (`defaults`, or `quick_defaults` when
+`quick`), the study's entry, and, when quick, the entry's `quick:` block; `ensemble`,
+`model_lyapunov`, `model` and `case_grid` merge key by key, every other key is replaced
+whole. The scene overrides of one case are, later winning: the link model (`model`), the
+duration, the default overrides, the study's `overrides`, the case's (or the sweep point's
+swept keys). The config's `model` and `defaults.overrides` describe the default scene
+(`defaults.scene`): they apply to the studies on that scene only, so a study on a scene of
+its own gets its own `model:` and `overrides:` and nothing else. `force_model: true` puts the
+config's link model (`links`, `elements`, `modes`, `solver`) over every study's own.
+
+Kept free of heavy imports: the workflow reads it on every parse (workflow/rules/common.smk).
+"""
+
+from collections.abc import Mapping
+from decimal import Decimal
+from typing import Any, NamedTuple
+
+from sim.studies.grid import sweep_grid
+
+#: a study's keys that fall back to the defaults' when the study does not set them
+DEFAULTED_KEYS = ("scene", "revolutions", "output_per_revolution", "transient", "timeout_s")
+#: a study's keys merged key by key over the defaults' (and by the `quick:` block)
+MERGED_KEYS = ("ensemble", "model_lyapunov")
+#: keys an ideal reference run does not take: it is all ideal and rigid (`--ideal --rigid`),
+#: and runs the scene's own integrator, DOPRI5, the better one for rigid links
+IDEAL_IGNORED = (".clearance", ".kind", ".elements", "solver.method", "solver.rho_inf")
+#: keys of the config's link model that `force_model` puts over a study's own
+FORCED_MODEL_KEYS = ("links", "elements", "modes", "axial_modes", "solver")
+
+
+class ConfigError(ValueError):
+    """A workflow config that cannot be planned; the message names the config key."""
+
+
+def is_quick(config: Mapping) -> bool:
+    """Whether the config asks for the quick variant (`--config quick=true` passes text)."""
+    return str(config.get("quick", False)).lower() == "true"
+
+
+def defaults(config: Mapping) -> dict:
+    """The defaults of this variant: `quick_defaults` when quick, else `defaults`."""
+    return config["quick_defaults"] if is_quick(config) else config["defaults"]
+
+
+def enabled_studies(config: Mapping) -> list[str]:
+    """The names of the studies to run, in config order."""
+    return [name for name, entry in config["studies"].items() if entry.get("enabled", True)]
+
+
+def format_rtol(rtol: float) -> str:
+    """A tolerance as a case name writes it: 1e-3, 5e-12."""
+    mantissa, exponent = f"{rtol:e}".split("e")
+    return f"{mantissa.rstrip('0').rstrip('.')}e{int(exponent)}"
+
+
+def grid_cases(grid: Mapping) -> dict[str, dict]:
+    """The cases of a `case_grid`: for each series, each of its link models and tolerances,
+    the case `<prefix><links><suffix>-<rtol>` with every body of `bodies` given the link
+    model's keys, the series' `overrides`, `solver.rtol` and `solver.atol` = rtol / 100
+    (exactly: the decimal of rtol shifted by two places)."""
+    cases = {}
+    for series in grid["series"]:
+        for links in series["links"]:
+            model = grid["links"][links]
+            for rtol in series["rtol"]:
+                name = f"{series.get('prefix', '')}{links}{series.get('suffix', '')}"
+                case = {
+                    f"bodies.{body}.{key}": value
+                    for body in grid["bodies"]
+                    for key, value in model.items()
+                }
+                case.update(series.get("overrides", {}))
+                case["solver.rtol"] = rtol
+                case["solver.atol"] = float(Decimal(repr(rtol)).scaleb(-2))
+                cases[f"{name}-{format_rtol(rtol)}"] = case
+    return cases
+
+
+def _with_cases(block: Mapping, grid: Mapping | None = None) -> dict:
+    """`block` (a study entry or its quick block) with its `case_grid` turned into `cases`;
+    a quick block's grid is merged key by key over the entry's (`grid`)."""
+    out = dict(block)
+    if "case_grid" in out:
+        out["cases"] = grid_cases({**(grid or {}), **out.pop("case_grid")})
+    return out
+
+
+def link_model(config: Mapping, entry: Mapping, quick_block: Mapping, scene: str) -> dict:
+    """The link model of a study: the config's `model` if the study is on the default scene,
+    the study's own `model:` (and its quick block's) on top; `force_model` puts the config's
+    link keys back on top. Empty: the scene's own links and integrator."""
+    own = {**entry.get("model", {}), **quick_block.get("model", {})}
+    on_default_scene = scene == defaults(config)["scene"]
+    if on_default_scene:
+        model = {**config["model"], **own}
+    elif own:
+        base = {k: v for k, v in config["model"].items() if k != "flexible_bodies"}
+        model = {"flexible_bodies": [], **base, **own}
+    else:
+        model = {}
+    if config.get("force_model") and model:
+        model.update({k: config["model"][k] for k in FORCED_MODEL_KEYS if k in config["model"]})
+    return model
+
+
+def study_settings(config: Mapping, name: str) -> dict:
+    """The resolved settings of study `name` (module docstring: precedence)."""
+    raw = config["studies"][name]
+    entry = _with_cases(raw)
+    quick = is_quick(config)
+    quick_block = _with_cases(raw.get("quick", {}), raw.get("case_grid")) if quick else {}
+    base = defaults(config)
+    settings = {key: value for key, value in entry.items() if key not in ("quick", "case_grid")}
+    settings.update(quick_block)
+    settings.pop("case_grid", None)
+    for key in DEFAULTED_KEYS:
+        settings.setdefault(key, base[key])
+    for key in MERGED_KEYS:
+        settings[key] = {**base.get(key, {}), **entry.get(key, {}), **quick_block.get(key, {})}
+    settings["model"] = link_model(config, entry, quick_block, settings["scene"])
+    on_default_scene = settings["scene"] == base["scene"]
+    settings["default_overrides"] = dict(base.get("overrides", {})) if on_default_scene else {}
+    _check(name, settings)
+    return settings
+
+
+def _check(name: str, settings: Mapping) -> None:
+    """Refuse settings that cannot run, naming the config key."""
+    exponent = settings["model_lyapunov"]
+    if not 0 <= exponent["transient"] < exponent["revolutions"]:
+        raise ConfigError(
+            f"config: studies.{name}.model_lyapunov (or the defaults'): transient = "
+            f"{exponent['transient']} must lie in [0, revolutions = {exponent['revolutions']})"
+        )
+    length = settings["ensemble"].get("revolutions")
+    if ensemble_size(settings) > 1 and length is not None and not length > settings["transient"]:
+        raise ConfigError(
+            f"config: studies.{name}.ensemble.revolutions (or the defaults'): {length} must "
+            f"exceed the study's transient, {settings['transient']} revolutions"
+        )
+
+
+def resolve(config: Mapping) -> dict[str, dict]:
+    """The settings of every enabled study, resolved once."""
+    return {name: study_settings(config, name) for name in enabled_studies(config)}
+
+
+# ---------------------------------------------------------------- cases and sweep points
+def point_name(sweep: Mapping, value: float) -> str:
+    """File name of one sweep point, e.g. clearance-0.0005m or speed-120rpm."""
+    return f"{sweep['label']}-{value:g}{sweep['unit']}"
+
+
+def sweep_points(settings: Mapping) -> list[tuple[str, float]]:
+    """(point name, value) of every point of a sweep study."""
+    sweep = settings["sweep"]
+    return [(point_name(sweep, value), value) for value in sweep_grid(sweep)]
+
+
+def case_names(settings: Mapping) -> list[str]:
+    """The cases of a study: its `cases`, or the points of its sweep."""
+    if "sweep" in settings:
+        return [point for point, _ in sweep_points(settings)]
+    return list(settings["cases"])
+
+
+def sweep_batches(settings: Mapping) -> list[list[tuple[str, float]]]:
+    """The points of a sweep study in batches of `sweep.batch` consecutive points."""
+    points = sweep_points(settings)
+    size = int(settings["sweep"]["batch"])
+    return [points[k : k + size] for k in range(0, len(points), size)]
+
+
+def link_overrides(model: Mapping) -> dict[str, Any]:
+    """Scene keys of a link model and its integrator (config `model`)."""
+    out = {f"solver.{key}": value for key, value in model.get("solver", {}).items()}
+    if not model:
+        return out
+    if model["links"] == "rigid":
+        out.update({f"bodies.{body}.kind": "rigid" for body in model["flexible_bodies"]})
+        return out
+    for body in model["flexible_bodies"]:
+        out[f"bodies.{body}.kind"] = model["links"]
+        if model["links"] == "modal":
+            # else the scene schema's defaults (sim.scene, bodies.<name>.modes, .axial_modes)
+            for key in ("modes", "axial_modes"):
+                if key in model:
+                    out[f"bodies.{body}.{key}"] = model[key]
+        else:
+            out[f"bodies.{body}.elements"] = model["elements"]
+    return out
+
+
+def case_overrides(settings: Mapping, case: str) -> dict[str, Any]:
+    """Every scene override of one case, in order of precedence (later wins): link model,
+    duration, default overrides, study, case (or sweep point)."""
+    out = link_overrides(settings["model"])
+    out["simulation.revolutions"] = settings["revolutions"]
+    out["simulation.output_per_revolution"] = settings["output_per_revolution"]
+    out.update(settings["default_overrides"])
+    out.update(settings.get("overrides", {}))
+    if "sweep" in settings:
+        value = dict(sweep_points(settings))[case]
+        out.update({key: value for key in settings["sweep"]["keys"]})
+    else:
+        out.update(settings["cases"][case])
+    return out
+
+
+def ideal_overrides(settings: Mapping, case: str) -> dict[str, Any]:
+    """A case's overrides for its ideal reference run (`--ideal --rigid` ignores the
+    clearance and link keys, so changing them does not rerun the reference)."""
+    overrides = case_overrides(settings, case)
+    return {k: v for k, v in overrides.items() if not k.endswith(IDEAL_IGNORED)}
+
+
+def sweep_base_overrides(settings: Mapping) -> dict[str, Any]:
+    """The overrides shared by every point of a sweep: a point's without the swept keys."""
+    keys = settings["sweep"]["keys"]
+    overrides = case_overrides(settings, sweep_points(settings)[0][0])
+    return {key: value for key, value in overrides.items() if key not in keys}
+
+
+# ---------------------------------------------------------------- ensemble members
+def ensemble_size(settings: Mapping) -> int:
+    """Members per case: the study's ensemble if it has statistics on peaks, else 1."""
+    return int(settings["ensemble"]["members"]) if "peaks" in settings["analyses"] else 1
+
+
+def member_overrides(settings: Mapping, case: str) -> dict[str, Any]:
+    """A further member's scene overrides: its case's, its length the ensemble's
+    `revolutions` (transient included) where that is shorter than the case's."""
+    overrides = case_overrides(settings, case)
+    length = settings["ensemble"].get("revolutions")
+    if length is not None:
+        overrides["simulation.revolutions"] = min(overrides["simulation.revolutions"], length)
+    return overrides
+
+
+def member_draw(settings: Mapping, member: int) -> dict[str, Any]:
+    """Arguments of sim.ensemble.member for one member: index, base seed and, if the config
+    states it, the perturbation's size (deg; else sim.ensemble's default)."""
+    ensemble = settings["ensemble"]
+    draw = {"index": int(member), "base_seed": int(ensemble["seed"])}
+    if "size_deg" in ensemble:
+        draw["size_deg"] = float(ensemble["size_deg"])
+    return draw
+
+
+# ---------------------------------------------------------------- fidelity study
+def fidelity_long_cases(settings: Mapping) -> list[str]:
+    """Cases of a fidelity study long enough for the chaos analysis (`sim analyze` needs the
+    transient and sim.analysis.run.MIN_REVOLUTIONS more): they feed the long-horizon
+    statistics (peaks, Lyapunov exponents, Poincaré distances)."""
+    from sim.analysis.run import MIN_REVOLUTIONS
+
+    need = settings["transient"] + MIN_REVOLUTIONS
+    return [
+        case
+        for case in case_names(settings)
+        if case_overrides(settings, case)["simulation.revolutions"] >= need
+    ]
+
+
+def fidelity_settings(settings: Mapping) -> dict[str, Any]:
+    """Reference cases, the long-horizon cases, short-horizon window and transient of a
+    fidelity study (figures.py's work_precision)."""
+    return {
+        "reference": settings["reference"],
+        "long_cases": fidelity_long_cases(settings),
+        "window": settings["window"],
+        "long_reference": settings.get("long_reference"),
+        "transient": settings["transient"],
+    }
+
+
+# ---------------------------------------------------------------- experiment study
+def synthetic_overrides(settings: Mapping) -> dict[str, Any]:
+    """Scene overrides of the synthetic recording's higher-fidelity run: the study's first
+    case with the `experiment.synthetic.overrides` on top."""
+    overrides = case_overrides(settings, case_names(settings)[0])
+    overrides.update(settings["experiment"]["synthetic"].get("overrides", {}))
+    return overrides
+
+
+# ---------------------------------------------------------------- the plan's scenes
+def planned_scenes(studies: Mapping[str, Mapping]) -> list[tuple[str, str, str, dict]]:
+    """(study, case, scene, overrides) of every run the studies plan: each case, the
+    experiment's synthetic recording, and of a sweep the points of its lowest and highest
+    value (a scene key's accepted values form an interval: they cover the points between)."""
+    out = []
+    for name, settings in studies.items():
+        cases = case_names(settings)
+        if "sweep" in settings:
+            points = sorted(sweep_points(settings), key=lambda point: point[1])
+            cases = list(dict.fromkeys([points[0][0], points[-1][0]]))
+        for case in cases:
+            out.append((name, case, settings["scene"], case_overrides(settings, case)))
+        if "experiment" in settings["analyses"]:
+            out.append((name, "synthetic", settings["scene"], synthetic_overrides(settings)))
+    return out
+
+
+def check_scenes(studies: Mapping[str, Mapping]) -> None:
+    """Load and validate every planned scene with its overrides, as `sim scene` does, and
+    refuse the plan at the first that cannot run (ConfigError naming study and case).
+
+    Each scene file is read once: load_scene(scene, overrides) is the loaded scene with the
+    overrides applied, its defaults filled in again and validated, which this does per case."""
+    from sim.scene import SceneError, apply_overrides, load_scene, validate_scene, with_defaults
+
+    loaded: dict[str, dict] = {}
+    for name, case, scene, overrides in planned_scenes(studies):
+        texts = [f"{key}={value}" for key, value in overrides.items()]
+        try:
+            if scene not in loaded:
+                loaded[scene] = load_scene(scene)
+            validate_scene(with_defaults(apply_overrides(loaded[scene], texts)), scene)
+        except SceneError as exc:
+            raise ConfigError(
+                f"config: studies.{name}, case {case}: its scene {scene!r} with the study's "
+                f"overrides cannot run: {exc}"
+            ) from None
+
+
+# ---------------------------------------------------------------- targets
+#: the final files (workflow/rules/paths.smk) of each analysis a study may list, per case
+CASE_TARGETS = {
+    "responses": ("responses",),
+    "trajectories": ("trajectories",),
+    "chaos": ("phase", "poincare", "lyapunov_csv", "lyapunov_html"),
+    "experiment": ("comparison_json",),
+}
+#: ... and per study
+STUDY_TARGETS = {
+    "peaks": (
+        "peaks_csv",
+        "peaks_html",
+        "revolutions",
+        "revolution_statistics_csv",
+        "revolution_statistics_html",
+    ),
+    "bifurcation": (
+        "bifurcation",
+        "bifurcation_figure",
+        "bifurcation_lyapunov_csv",
+        "bifurcation_lyapunov_html",
+    ),
+    "work_precision": ("work_precision_csv", "work_precision_html", "work_precision_figure"),
+    "extremes": ("extremes_csv", "extremes_html"),
+    "chaos": ("model_exponent_csv", "model_exponent_html"),
+    "crosscheck": ("crosscheck_csv", "crosscheck_html", "crosscheck_summary"),
+}
+
+
+def has_clearance(settings: Mapping, case: str) -> bool:
+    """Whether a case's overrides give some joint a clearance."""
+    return any(
+        key.endswith(".clearance") and float(value) > 0
+        for key, value in case_overrides(settings, case).items()
+    )
+
+
+def study_files(name: str, settings: Mapping, crosscheck: bool) -> list[tuple[str, dict]]:
+    """(file name, wildcards) of every final file of study `name`; `crosscheck`: whether
+    the cross-check's case files are made (Exudyn importable)."""
+    cases = case_names(settings)
+    out = []
+    for analysis in settings["analyses"]:
+        for case in cases:
+            out += [(f, {"study": name, "case": case}) for f in CASE_TARGETS.get(analysis, ())]
+        out += [(f, {"study": name}) for f in STUDY_TARGETS.get(analysis, ())]
+    if "crosscheck" in settings["analyses"] and crosscheck:
+        out += [("crosscheck_overlay", {"study": name, "case": case}) for case in cases]
+        out += [
+            ("crosscheck_statistics", {"study": name, "case": case})
+            for case in cases
+            if has_clearance(settings, case)
+        ]
+    return out
+
+
+# ---------------------------------------------------------------- the landing page's inputs
+class LandingInput(NamedTuple):
+    """One named input of the landing page (sim.claims reads it as `<role>_<name>`): the
+    file (workflow/rules/paths.smk) of the study that config `report.<role>` names, if
+    that study lists `analysis` (None: any study); of its first case if `per_case`."""
+
+    role: str
+    analysis: str | None
+    name: str
+    file: str
+    per_case: bool
+
+
+#: every input of the landing page but the experiment's recording metadata, in input order:
+#: the roles that share their inputs, then (analysis, name, file, per case) of each input;
+#: sim.claims judges each claim on these names
+_LANDING_GROUPS = (
+    (
+        ("flagship", "all_joints"),
+        (
+            (None, "run", "run", True),
+            (None, "ideal", "ideal", True),
+            ("chaos", "analysis", "analysis", True),
+            ("chaos", "model_exponents", "model_exponent_csv", False),
+        ),
+    ),
+    (
+        ("clearance_size", "speed"),
+        (("peaks", "peaks", "peaks_csv", False), ("peaks", "revolutions", "revolutions", False)),
+    ),
+    (
+        ("bifurcation_clearance", "bifurcation_speed"),
+        (
+            ("bifurcation", "table", "bifurcation_lyapunov_csv", False),
+            ("bifurcation", "dataset", "bifurcation", False),
+        ),
+    ),
+    (("cross_check",), (("crosscheck", "summary", "crosscheck_summary", False),)),
+    (("experiment",), (("experiment", "comparison", "comparison_json", True),)),
+)
+LANDING_INPUTS = tuple(
+    LandingInput(role, *item)
+    for roles, items in _LANDING_GROUPS
+    for role in roles
+    for item in items
+)
+
+
+def landing_inputs(config: Mapping, studies: Mapping[str, Mapping]) -> list[tuple[str, str, dict]]:
+    """(input name, file name, wildcards) of every landing input that the enabled
+    `studies` (resolved settings) provide."""
+    roles = config["report"]
+    out = []
+    for item in LANDING_INPUTS:
+        name = roles.get(item.role)
+        if name not in studies:
+            continue
+        settings = studies[name]
+        if item.analysis is not None and item.analysis not in settings["analyses"]:
+            continue
+        wildcards = {"study": name}
+        if item.per_case:
+            wildcards["case"] = case_names(settings)[0]
+        out.append((f"{item.role}_{item.name}", item.file, wildcards))
+    return out
