@@ -317,10 +317,21 @@ def load_scene(name_or_path: str, overrides: Sequence[str] = ()) -> dict:
     every problem at once, each named by its origin: the file or a `--set`."""
     problems: list[Problem] = []
     raw, source = _read_raw(name_or_path, (name_or_path,), problems)
+    return _resolve(raw, source, overrides, problems)
+
+
+def with_overrides(scene: dict, overrides: Sequence[str], source: str) -> dict:
+    """A loaded scene with further overrides applied, defaults filled in again and validated,
+    as :func:`load_scene` would give it: for a caller that reads a scene once and checks many
+    sets of overrides (the workflow's plan). SceneError as load_scene's."""
+    return _resolve(scene, source, overrides, [])
+
+
+def _resolve(raw: dict, source: str, overrides: Sequence[str], problems: list[Problem]) -> dict:
+    """The last steps of loading: defaults, overrides, defaults again, every problem at once."""
     scene, override_problems = apply_overrides(with_defaults(raw), overrides)
     scene = with_defaults(scene)
-    problems += override_problems + scene_problems(scene)
-    _raise(problems, source, overrides)
+    _raise([*problems, *override_problems, *scene_problems(scene)], source, overrides)
     return scene
 
 

@@ -311,7 +311,7 @@ def check_scenes(studies: Mapping[str, Mapping]) -> None:
 
     Each scene file is read once: load_scene(scene, overrides) is the loaded scene with the
     overrides applied, its defaults filled in again and validated, which this does per case."""
-    from sim.scene import SceneError, apply_overrides, load_scene, validate_scene, with_defaults
+    from sim.scene import SceneError, load_scene, with_overrides
 
     loaded: dict[str, dict] = {}
     for name, case, scene, overrides in planned_scenes(studies):
@@ -319,7 +319,7 @@ def check_scenes(studies: Mapping[str, Mapping]) -> None:
         try:
             if scene not in loaded:
                 loaded[scene] = load_scene(scene)
-            validate_scene(with_defaults(apply_overrides(loaded[scene], texts)), scene)
+            with_overrides(loaded[scene], texts, scene)
         except SceneError as exc:
             raise ConfigError(
                 f"config: studies.{name}, case {case}: its scene {scene!r} with the study's "
