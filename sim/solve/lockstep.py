@@ -31,7 +31,6 @@ from sim.jit import kernel
 from sim.model.gaps import MEM_GRAZED
 from sim.solve import methods
 from sim.solve.control import T_ROUNDOFF
-from sim.solve.dae import project_onto_tree, rhs
 from sim.solve.status import NONFINITE, OK, STEP_COLLAPSE
 from sim.solve.stepping import (
     FLIPS_PER_GAP,
@@ -39,6 +38,8 @@ from sim.solve.stepping import (
     _fail,
     _first_event,
     _flip_and_refresh,
+    start_trajectory,
+    take_step,
 )
 
 #: the follower halves a logged step when its own error estimate exceeds this many times its
@@ -59,20 +60,11 @@ def follow(sys, work, carry, trajectory, step_ends, n_steps: int, options, buffe
     clock = trajectory.clock[0]
     y = trajectory.y
     mem = trajectory.mem
-    ny = 2 * sys.n + 2
-    k0 = carry.derivative
-    k_end = work.ydot_end
     hmin = options.hmin
     t = clock.t
-    if not clock.started:
-        # a renormalised state may lie off a tree mechanism's manifold: project it first
-        project_onto_tree(sys, work, t, y)
-        s = rhs(sys, work, mem, t, y, k0)
-        tally.evaluations += 1
-        if s != OK:
-            return _fail(tally, s, t)
-        methods.start(sys, work, carry, options)
-        clock.started = True
+    s = start_trajectory(sys, work, carry, trajectory, options, tally)
+    if s != OK:
+        return _fail(tally, s, t)
     i = 0
     forced = 0.0  # > 0: the next step ends exactly at a located event of this trajectory
     pending = -1  # the gap to flip at the end of the forced step
@@ -114,12 +106,8 @@ def follow(sys, work, carry, trajectory, step_ends, n_steps: int, options, buffe
         methods.accept(sys, work, carry, options)
         t += hs
         tally.accepted += 1
-        for k in range(ny):
-            y[k] = work.ynew[k]
-            k0[k] = k_end[k]
-        for k in range(ny):
-            if not np.isfinite(y[k]):
-                return _fail(tally, NONFINITE, t)
+        if not take_step(sys, work, carry, y):
+            return _fail(tally, NONFINITE, t)
         flips_at_t = 0
         if pending >= 0:
             s = _flip_and_refresh(sys, work, carry, mem, pending, t, y, buffers.rev_events, tally)

@@ -265,6 +265,41 @@ def _fail(tally, status: int, t: float) -> int:
 
 
 @kernel
+def start_trajectory(sys, work, carry, trajectory, options, tally) -> int:
+    """Evaluate the step data carried from (t, y) when the trajectory has none (a fresh or a
+    restored one: `clock.started` false): the derivative, the method's start data. Returns
+    the right-hand side's status."""
+    clock = trajectory.clock[0]
+    if clock.started:
+        return OK
+    y = trajectory.y
+    # a restored state may lie off a tree mechanism's manifold (a Lyapunov perturbation):
+    # its gaps must be those its forces see
+    project_onto_tree(sys, work, clock.t, y)
+    s = rhs(sys, work, trajectory.mem, clock.t, y, carry.derivative)
+    tally.evaluations += 1
+    if s != OK:
+        return s
+    methods.start(sys, work, carry, options)
+    clock.started = True
+    return OK
+
+
+@kernel
+def take_step(sys, work, carry, y: np.ndarray) -> bool:
+    """Move the trajectory's state y and carried derivative to the accepted step's end
+    (work.ynew, work.ydot_end); False when the new state is not finite."""
+    ny = 2 * sys.n + 2
+    for i in range(ny):
+        y[i] = work.ynew[i]
+        carry.derivative[i] = work.ydot_end[i]
+    for i in range(ny):
+        if not np.isfinite(y[i]):
+            return False
+    return True
+
+
+@kernel
 def integrate(sys, work, carry, trajectory, t_end: float, options, buffers, tallies) -> int:
     """Advance the trajectory (`sim.solve.state.Trajectory`) from its clock's t to t_end,
     recording into `buffers` and counting into tallies[0] (`sim.solve.state.TALLY`).
@@ -276,24 +311,14 @@ def integrate(sys, work, carry, trajectory, t_end: float, options, buffers, tall
     clock = trajectory.clock[0]
     y = trajectory.y
     mem = trajectory.mem
-    ny = 2 * sys.n + 2
-    k0 = carry.derivative
-    k_end = work.ydot_end
     hmax = options.hmax
     hmin = options.hmin
     t = clock.t
     h = clock.h
     facold = clock.facold
-    if not clock.started:
-        # a restored state may lie off a tree mechanism's manifold (a Lyapunov perturbation):
-        # its gaps must be those its forces see
-        project_onto_tree(sys, work, t, y)
-        s = rhs(sys, work, mem, t, y, k0)
-        tally.evaluations += 1
-        if s != OK:
-            return _fail(tally, s, t)
-        methods.start(sys, work, carry, options)
-        clock.started = True
+    s = start_trajectory(sys, work, carry, trajectory, options, tally)
+    if s != OK:
+        return _fail(tally, s, t)
     wanted = h
     forced = 0.0  # > 0: the next step must end exactly at a located event
     pending = -1  # the gap to flip at the end of the forced step
@@ -352,12 +377,8 @@ def integrate(sys, work, carry, trajectory, t_end: float, options, buffers, tall
         t += hs
         tally.accepted += 1
         _log_step(buffers, tally, t)
-        for i in range(ny):
-            y[i] = work.ynew[i]
-            k0[i] = k_end[i]
-        for i in range(ny):
-            if not np.isfinite(y[i]):
-                return _fail(tally, NONFINITE, t)
+        if not take_step(sys, work, carry, y):
+            return _fail(tally, NONFINITE, t)
         if pending >= 0:
             s = _flip_and_refresh(sys, work, carry, mem, pending, t, y, buffers.rev_events, tally)
             if s != OK:
