@@ -154,9 +154,8 @@ def _check_budget(work: Path) -> None:
     assert {"run", "member", "ideal", "model-exponent"} <= set(table["clearance-size"])
 
 
-@pytest.mark.slow
-def test_quick_workflow_end_to_end(tmp_path):
-    """The quick configuration in a copy of the workflow, then the report."""
+def _workflow_copy(tmp_path: Path) -> Path:
+    """A copy of the workflow (Snakefile, config, rules, report, data) to run in."""
     work = tmp_path / "repo"
     work.mkdir()
     for item in ("Snakefile", "config", "workflow", "report", "data"):
@@ -165,6 +164,13 @@ def test_quick_workflow_end_to_end(tmp_path):
             shutil.copytree(source, work / item)
         else:
             shutil.copy(source, work / item)
+    return work
+
+
+@pytest.mark.slow
+def test_quick_workflow_end_to_end(tmp_path):
+    """The quick configuration in a copy of the workflow, then the report."""
+    work = _workflow_copy(tmp_path)
     done = _snakemake("-j2", "--configfile", "config/quick.yaml", cwd=work, timeout=3600)
     assert done.returncode == 0, done.stderr[-4000:]
     targets = _snakemake(
@@ -230,14 +236,7 @@ def test_quick_workflow_runs_a_four_bar_study(tmp_path):
     six-bar's studies (its link model's bodies, its operating point) reaches its runs."""
     import xarray as xr
 
-    work = tmp_path / "repo"
-    work.mkdir()
-    for item in ("Snakefile", "config", "workflow", "report", "data"):
-        source = ROOT / item
-        if source.is_dir():
-            shutil.copytree(source, work / item)
-        else:
-            shutil.copy(source, work / item)
+    work = _workflow_copy(tmp_path)
     shutil.copy(ROOT / "tests/workflow/fourbar.yaml", work / "fourbar.yaml")
     (work / "fourbar-study.yaml").write_text(FOURBAR_STUDY)
     args = ("results/fourbar/done", "--configfile", "config/quick.yaml", "fourbar-study.yaml")
