@@ -190,7 +190,7 @@ def test_the_plan_refuses_a_scene_that_cannot_run():
     assert "studies.s, case bad" in message and "clearence" in message
     # a body of the six-bar on another scene is refused the same way
     config = _config(scene="slider-crank", model={"flexible_bodies": ["rod2"]}, cases={"c": {}})
-    with pytest.raises(resolver.ConfigError, match=r"studies\.s, case c.*rod2"):
+    with pytest.raises(resolver.ConfigError, match=r"(?s)studies\.s, case c.*rod2"):
         resolver.check_scenes(resolver.resolve(config))
 
 
