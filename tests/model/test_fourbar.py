@@ -88,8 +88,8 @@ def loop_rates(theta2, theta3, theta4, omega2):
     (Norton, Design of Machinery, 5th ed., §6.7 and §7.3)."""
     s2, c2, s3, c3, s4, c4 = (f(x) for x in (theta2, theta3, theta4) for f in (np.sin, np.cos))
     matrix = np.moveaxis(np.array([[-B * s3, C * s4], [B * c3, -C * c4]]), -1, 0)
-    velocity = np.linalg.solve(matrix, np.stack([A * omega2 * s2, -A * omega2 * c2], -1))
-    w3, w4 = velocity.T
+    velocity = np.linalg.solve(matrix, np.stack([A * omega2 * s2, -A * omega2 * c2], -1)[..., None])
+    w3, w4 = velocity[..., 0].T
     rhs = np.stack(
         [
             A * omega2**2 * c2 + B * w3**2 * c3 - C * w4**2 * c4,
@@ -97,7 +97,7 @@ def loop_rates(theta2, theta3, theta4, omega2):
         ],
         -1,
     )
-    a3, a4 = np.linalg.solve(matrix, rhs).T
+    a3, a4 = np.linalg.solve(matrix, rhs[..., None])[..., 0].T
     return w3, w4, a3, a4
 
 
