@@ -224,7 +224,7 @@ studies:
     model: {links: beam, elements: 2, flexible_bodies: [coupler], solver: {method: dopri5}}
     cases:
       clearance-0.3mm: {}
-    analyses: [trajectories, chaos]
+    analyses: [responses, trajectories, chaos, peaks]
 """
 
 
@@ -251,6 +251,9 @@ def test_quick_workflow_runs_a_four_bar_study(tmp_path):
     assert done.returncode == 0, done.stderr[-4000:]
     study = work / "results/fourbar"
     for name in (
+        "figures/responses_clearance-0.3mm.png",
+        "tables/peaks.csv",
+        "tables/revolutions.csv",
         "figures/trajectories_clearance-0.3mm.png",
         "figures/phase_clearance-0.3mm.png",
         "figures/poincare_clearance-0.3mm.png",
