@@ -111,7 +111,8 @@ def _check_bifurcation(work: Path) -> None:
         K = ds.zero_one_K.sel(parameter=[5e-4, 1e-3]).values
         assert np.all(np.abs(K) <= 1)  # a correlation
         assert (ds.verdict.sel(parameter=0.0) == "").all()
-        assert ds.attrs["model"] == "modal links rod2, rod3, rod4 (1 bending mode), dopri5 rtol 1e-06"
+        model = "modal links rod2, rod3, rod4 (1 bending mode), dopri5 rtol 1e-06"
+        assert ds.attrs["model"] == model
 
 
 def _check_ensembles(work: Path) -> None:
