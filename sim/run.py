@@ -155,13 +155,18 @@ class Integration:
                 f"the leading trajectory took {n} steps, more than its log of "
                 f"{leader.buffers.step_ends.size} holds: shorten the interval"
             )
-        return lockstep.follow(
+        return lockstep.follow(*self.follow_arguments(leader.buffers.step_ends, n))
+
+    def follow_arguments(self, step_ends: np.ndarray, n: int) -> tuple:
+        """The arguments of the compiled follower (`lockstep.follow`) through the first n of
+        a leader's logged step ends."""
+        return (
             self.system,
             self.work,
             self.carry,
             self.trajectory,
-            leader.buffers.step_ends,
-            n,
+            step_ends,
+            int(n),
             self.options,
             self.buffers,
             self.tally,

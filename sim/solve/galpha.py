@@ -59,6 +59,7 @@ from sim.solve.dae import (
 )
 from sim.solve.dense import hermite_coefficients, interpolate
 from sim.solve.linalg import lu_in_place, lu_solve_in_place
+from sim.solve.means import next_window_end
 from sim.solve.record import write_row
 from sim.solve.state import next_sample
 from sim.solve.status import OK, SINGULAR
@@ -136,9 +137,12 @@ def accept(sys, work, carry) -> None:
 @kernel
 def plan(t: float, h: float, t_end: float, buffers, tally) -> float:
     """The step to take from t given the step size h the controller wants: equal steps
-    to the next sample (or t_end), none longer than h. Samples record the step's own
-    state (`sample`), so steps end on them."""
-    left = min(t_end, next_sample(t, buffers, tally)) - t
+    to the next sample, window end or t_end, none longer than h. Samples record the step's
+    own state (`sample`), so steps end on them; an interval mean takes the velocities at its
+    window's ends (`sim.solve.means`), so steps end there too: the method's continuous
+    extension, a cubic through the step's ends, carries vibration the steps do not resolve."""
+    boundary = min(next_sample(t, buffers, tally), next_window_end(t, buffers.means, buffers.out_t))
+    left = min(t_end, boundary) - t
     return left / np.ceil(left / h * (1.0 - PLAN_ROUNDOFF))
 
 
@@ -332,8 +336,9 @@ def _step(sys, work, carry, mem, t: float, h: float, y: np.ndarray, rtol, atol, 
         sys, work, carry, mem, t, h, y, rtol, atol, rho_inf, not fresh
     )
     if s == OK and not converged and fresh:
+        # factor = fresh, which is True here: a literal True would compile a second _newton
         s, converged, more, more_jacobians, iterations = _newton(
-            sys, work, carry, mem, t, h, y, rtol, atol, rho_inf, True
+            sys, work, carry, mem, t, h, y, rtol, atol, rho_inf, fresh
         )
         evaluations += more
         jacobians += more_jacobians

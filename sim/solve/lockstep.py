@@ -34,6 +34,7 @@ from sim.solve.control import T_ROUNDOFF
 from sim.solve.status import NONFINITE, OK, STEP_COLLAPSE
 from sim.solve.stepping import (
     FLIPS_PER_GAP,
+    NO_GAP,
     _check_state,
     _fail,
     _first_event,
@@ -67,7 +68,7 @@ def follow(sys, work, carry, trajectory, step_ends, n_steps: int, options, buffe
         return _fail(tally, s, t)
     i = 0
     forced = 0.0  # > 0: the next step ends exactly at a located event of this trajectory
-    pending = -1  # the gap to flip at the end of the forced step
+    pending = NO_GAP  # the gap to flip at the end of the forced step
     cap = np.inf  # the largest step the method managed since the last logged end
     flips_at_t = 0
     while i < n_steps:
@@ -82,7 +83,7 @@ def follow(sys, work, carry, trajectory, step_ends, n_steps: int, options, buffe
         if s != OK or not err <= REFINE:
             tally.rejected += 1
             forced = 0.0
-            pending = -1
+            pending = NO_GAP
             cap = 0.5 * hs
             if cap < hmin:
                 tally.failure_step = cap
@@ -114,6 +115,6 @@ def follow(sys, work, carry, trajectory, step_ends, n_steps: int, options, buffe
             if s != OK:
                 return _fail(tally, s, t)
             forced = 0.0
-            pending = -1
+            pending = NO_GAP
     clock.t = t
     return OK

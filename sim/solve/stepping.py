@@ -50,6 +50,9 @@ ones would end the run in STEP_COLLAPSE for a contact too brief to matter."""
 FLIPS_PER_GAP = 2
 """Flips at one instant per gap after which events are not looked for again at that instant:
 a gap a hair's breadth from its wall would otherwise flip for ever."""
+NO_GAP = np.int64(-1)
+"""No gap to flip. A numpy integer, not -1: numba would type a variable assigned the literal
+-1 as Literal[int](-1) and compile the kernels it is passed to a second time for it."""
 
 
 @kernel
@@ -321,7 +324,7 @@ def integrate(sys, work, carry, trajectory, t_end: float, options, buffers, tall
         return _fail(tally, s, t)
     wanted = h
     forced = 0.0  # > 0: the next step must end exactly at a located event
-    pending = -1  # the gap to flip at the end of the forced step
+    pending = NO_GAP  # the gap to flip at the end of the forced step
     flips_at_t = 0
     while t_end - t > T_ROUNDOFF * max(1.0, abs(t)):
         if tally.accepted + tally.rejected >= options.max_steps:
@@ -342,7 +345,7 @@ def integrate(sys, work, carry, trajectory, t_end: float, options, buffers, tall
         if not err <= 1.0:
             tally.rejected += 1
             forced = 0.0
-            pending = -1
+            pending = NO_GAP
             h = methods.shrunk_step(hs, err, options)
             if h < hmin:
                 tally.failure_step = h
@@ -386,7 +389,7 @@ def integrate(sys, work, carry, trajectory, t_end: float, options, buffers, tall
             # Resume with the step size that found the event, not the short
             # step that ended on it.
             forced = 0.0
-            pending = -1
+            pending = NO_GAP
             flips_at_t = 0
             continue
         flips_at_t = 0

@@ -16,8 +16,12 @@ joints, minimal and absolute coordinates all share it.
 
 import time
 
-from sim.run import simulate
+import numba
+import numpy as np
+
+from sim.run import prepare, simulate
 from sim.scene import load_scene
+from sim.solve import lockstep
 
 #: the run that compiles a method's kernels: the six-bar with clearance in A and B and
 #: two-element beams, long enough for its first contact events
@@ -32,10 +36,16 @@ WARMUP_OVERRIDES = (
 )
 
 
-def compile_kernels(method: str) -> float:
+def compile_kernels(method: str, follower: bool = True) -> float:
     """Compile (or load from numba's cache) every kernel a run with integrator ``method``
     (``solver.method``: ``dopri5`` or ``generalized_alpha``) calls, by running the built-in
-    six-bar for 0.02 revolution with it; returns the wall time in seconds."""
+    six-bar for 0.02 revolution with it, and with ``follower`` the lockstep follower of the
+    model exponent (sim.solve.lockstep) for it; returns the wall time in seconds."""
     start = time.perf_counter()
-    simulate(load_scene("sixbar", [*WARMUP_OVERRIDES, f"solver.method={method}"]))
+    scene = load_scene("sixbar", [*WARMUP_OVERRIDES, f"solver.method={method}"])
+    simulate(scene)
+    if follower:
+        integ = prepare(scene)
+        arguments = integ.follow_arguments(np.zeros(1), 0)
+        lockstep.follow.compile(tuple(numba.typeof(a) for a in arguments))
     return time.perf_counter() - start
