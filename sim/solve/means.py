@@ -109,6 +109,17 @@ def _window_end(out_t: np.ndarray, i: int) -> float:
 
 
 @kernel
+def next_window_end(t: float, means, out_t: np.ndarray) -> float:
+    """End of the open window when it lies after t, else ∞ (every window closed, point
+    sampling, or the end at t itself)."""
+    i = means.clock[0].window
+    if i >= out_t.shape[0]:
+        return np.inf
+    b = _window_end(out_t, i)
+    return b if b > t else np.inf
+
+
+@kernel
 def _integrate_to(means, t: float, t_end_step: float) -> None:
     """Advance the quadrature from clock.t_node to t (≤ t_end_step): the trapezoid on the
     straight line from the node's values to the step's end values (`Means.end`)."""
