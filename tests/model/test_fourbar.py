@@ -32,10 +32,13 @@ def wrapped(angle: np.ndarray) -> np.ndarray:
     return (angle + np.pi) % (2.0 * np.pi) - np.pi
 
 
-def test_the_builtin_four_bar_takes_every_numerical_setting_from_the_defaults():
+def test_the_builtin_four_bar_takes_every_numerical_setting_but_rtol_from_the_defaults():
+    # rtol is the scene's own: in sustained contact the default leaves its energy audit above
+    # the bound (docs/fidelity.md, "The energy audit")
     scene = load_scene("fourbar")
-    for section, table in (("contact", CONTACT), ("simulation", SIMULATION), ("solver", SOLVER)):
+    for section, table in (("contact", CONTACT), ("simulation", SIMULATION)):
         assert scene[section] == {k: f.default for k, f in table.items()}, section
+    assert scene["solver"] == {k: f.default for k, f in SOLVER.items()} | {"rtol": 1e-6}
     assert scene["joints"]["B"]["clearance"] == 0.3e-3
     assert scene["bodies"]["rocker"]["kind"] == "rigid"
 
