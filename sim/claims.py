@@ -223,7 +223,9 @@ def claim_flagship_chaos(inputs: Inputs) -> dict:
     )
     model = None
     if "flagship_model_exponents" in inputs:
-        model = _members_text(pd.read_csv(inputs["flagship_model_exponents"]).iloc[0])
+        _, (primary, *beside) = _exponents_by_case(inputs["flagship_model_exponents"])[0]
+        model = _members_text(primary)
+        model += "".join(f"; beside it, {_members_text(row)}" for row in beside)
     elif "model_lyapunov_exponent" in a:
         model = (
             f"{float(a.model_lyapunov_exponent):.3g} ± {float(a.model_lyapunov_stderr):.2g} 1/s "
@@ -267,6 +269,40 @@ def _members_text(row: pd.Series) -> str:
         f"({row.interval_coverage:.1%} distribution-free coverage of the median), {stderr} "
         f"({span})"
     )
+
+
+def _exponents_by_case(path) -> list[tuple[str, list[pd.Series]]]:
+    """The rows of a model_exponent table case by case, each case's primary link model (the
+    study's `model_lyapunov.links`, the one its verdicts read) first."""
+    table = pd.read_csv(path)
+    if "primary" not in table:
+        table["primary"] = True
+    return [
+        (
+            str(case),
+            [
+                row
+                for _, row in part.sort_values("primary", ascending=False, kind="stable").iterrows()
+            ],
+        )
+        for case, part in table.groupby("case", sort=False)
+    ]
+
+
+def exponent_comparison(inputs: Inputs) -> list[dict]:
+    """The model exponent of every ensemble case of the studies the landing page reads, on each
+    link model the study takes it on (`model_lyapunov.links`, then `compare`): one row per case,
+    {role, case, exponents: [(links, primary, members text)]}, the primary link model first."""
+    return [
+        {
+            "role": key.removesuffix("_model_exponents").replace("_", " "),
+            "case": case,
+            "exponents": [(str(r.links), bool(r.primary), _members_text(r)) for r in rows],
+        }
+        for key, path in inputs.items()
+        if key.endswith("_model_exponents")
+        for case, rows in _exponents_by_case(path)
+    ]
 
 
 def _third_text(

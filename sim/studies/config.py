@@ -251,6 +251,14 @@ def member_draw(settings: Mapping, member: int) -> dict[str, Any]:
     return draw
 
 
+def exponent_links(settings: Mapping) -> list[str]:
+    """The link models the members' exponents are taken on: the study's `model_lyapunov.links`
+    (the one its verdicts and claims read) first, then those of `compare` in their order."""
+    exponent = settings["model_lyapunov"]
+    primary = exponent["links"]
+    return [primary] + [links for links in exponent.get("compare", []) if links != primary]
+
+
 # ---------------------------------------------------------------- fidelity study
 def fidelity_long_cases(settings: Mapping) -> list[str]:
     """Cases of a fidelity study long enough for the chaos analysis (`sim analyze` needs the
@@ -412,7 +420,11 @@ _LANDING_GROUPS = (
     ),
     (
         ("clearance_size", "speed"),
-        (("peaks", "peaks", "peaks_csv", False), ("peaks", "revolutions", "revolutions", False)),
+        (
+            ("peaks", "peaks", "peaks_csv", False),
+            ("peaks", "revolutions", "revolutions", False),
+            ("chaos", "model_exponents", "model_exponent_csv", False),
+        ),
     ),
     (
         ("bifurcation_clearance", "bifurcation_speed"),

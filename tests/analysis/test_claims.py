@@ -1,12 +1,14 @@
 """The landing page's judges (sim.claims) on synthetic tables of the peaks studies."""
 
+import numpy as np
 import pandas as pd
 import pytest
+import xarray as xr
 from test_verdicts import ensemble
 
 from sim.analysis.revolutions import Bootstrap
 from sim.analysis.verdicts import NOT_EVALUATED, SUPPORTED, UNDECIDED
-from sim.claims import judge_all
+from sim.claims import claim_flagship_chaos, exponent_comparison, judge_all
 
 BOOT = Bootstrap(resamples=500, level=0.95, seed=1)
 
@@ -240,3 +242,71 @@ def test_flagship_chaos_reads_the_channel_verdicts(tmp_path, a_x, expected):
     row = next(r for r in claims if r["claim"].startswith("At 0.5 mm"))
     assert row["verdict"] == expected
     assert f"A.x: λ = -0.83 1/s ({a_x}, section period 0)" in row["evidence"]
+
+
+def test_the_exponent_of_the_flexible_and_the_rigid_mechanism_side_by_side(tmp_path):
+    """A study's model-exponent table with two link models: the flagship claim leads with the
+    primary one and gives the other beside it; the landing page's comparison has one row per
+    case of every study, the primary link model first whatever the table's order."""
+
+    def row(case: str, links: str, primary: bool, median: float) -> dict:
+        return {
+            "case": case,
+            "links": links,
+            "primary": primary,
+            "members": 4,
+            "median_exponent_per_s": median,
+            "interval_low_per_s": median - 10.0,
+            "interval_high_per_s": median + 10.0,
+            "interval_coverage": 0.875,
+            "mean_member_stderr_per_s": 3.0,
+            "revolutions": 30,
+            "transient_revolutions": 10,
+        }
+
+    pd.DataFrame([row("c-0.5", "rigid", False, 57.0), row("c-0.5", "modal", True, 271.0)]).to_csv(
+        tmp_path / "flagship.csv", index=False
+    )
+    pd.DataFrame(
+        [
+            row("c-0.1", "modal", True, 150.0),
+            row("c-0.1", "rigid", False, 40.0),
+            row("c-0.4", "modal", True, 250.0),
+            row("c-0.4", "rigid", False, 60.0),
+        ]
+    ).to_csv(tmp_path / "size.csv", index=False)
+    inputs = {
+        "flagship_model_exponents": str(tmp_path / "flagship.csv"),
+        "clearance_size_model_exponents": str(tmp_path / "size.csv"),
+    }
+    rows = exponent_comparison(inputs)
+    assert [(r["role"], r["case"]) for r in rows] == [
+        ("flagship", "c-0.5"),
+        ("clearance size", "c-0.1"),
+        ("clearance size", "c-0.4"),
+    ]
+    assert [(links, primary) for links, primary, _ in rows[0]["exponents"]] == [
+        ("modal", True),
+        ("rigid", False),
+    ]
+    assert rows[0]["exponents"][1][2].startswith("median over 4 members 57 1/s, interval [47, 67]")
+
+    analysis = tmp_path / "analysis.nc"
+    xr.Dataset(
+        {
+            "lyapunov_exponent": ("channel", [80.0, 60.0, 40.0, -5.0]),
+            "verdict": ("channel", ["chaotic", "chaotic", "chaotic", "periodic"]),
+            "section_period": ("channel", [0, 0, 0, 1]),
+        },
+        coords={"channel": ["A.x", "A.y", "B.x", "B.y"], "revolution": np.arange(20)},
+        attrs={"transient_revolutions": 2},
+    ).to_netcdf(analysis)
+    evidence = claim_flagship_chaos(
+        {
+            "flagship_analysis": str(analysis),
+            "flagship_model_exponents": inputs["flagship_model_exponents"],
+        }
+    )["evidence"]
+    primary = evidence.index("median over 4 members 271 1/s")
+    beside = evidence.index("; beside it, median over 4 members 57 1/s")
+    assert primary < beside < evidence.index("A.x: λ = 80 1/s")

@@ -102,7 +102,21 @@ def test_quick_merge():
     assert quick["transient"] == 1  # quick_defaults'
     assert quick["timeout_s"] == 120  # schema default of `quick_defaults`
     assert quick["ensemble"] == {"members": 3, "seed": 3}  # quick_defaults: members 1, seed 0
-    assert quick["model_lyapunov"] == {"revolutions": 40, "transient": 1, "links": "run"}
+    assert quick["model_lyapunov"] == {
+        "revolutions": 40,
+        "transient": 1,
+        "links": "run",
+        "compare": [],
+    }
+
+
+def test_exponent_links_lead_with_the_primary_model_and_keep_the_comparison_order():
+    # the verdicts read `links`; `compare` adds the others once each, in their order
+    settings = resolver.study_settings(_config(), "s")
+    assert resolver.exponent_links(settings) == ["rigid"]
+    lyapunov = {"links": "modal", "compare": ["rigid", "modal", "run"]}
+    settings = resolver.study_settings(_config(model_lyapunov=lyapunov), "s")
+    assert resolver.exponent_links(settings) == ["modal", "rigid", "run"]
 
 
 def test_fidelity_grid_reproduces_the_cases_once_typed_by_hand():

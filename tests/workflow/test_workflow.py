@@ -137,6 +137,28 @@ def _check_ensembles(work: Path) -> None:
     assert "95% intervals" in peaks.intervals
 
 
+def _check_exponent_comparison(work: Path) -> None:
+    """The members' exponents on both link models of the quick configuration (`links: rigid`,
+    `compare: [modal]`): a row per case and model in the study's table, the primary one marked,
+    and both side by side on the landing page."""
+    import pandas as pd
+
+    table = pd.read_csv(work / "results/clearance-size/tables/model_exponent.csv")
+    assert sorted(zip(table.case, table.links, table.primary, strict=True)) == [
+        ("clearance-0.1mm", "modal", False),
+        ("clearance-0.1mm", "rigid", True),
+        ("clearance-0.4mm", "modal", False),
+        ("clearance-0.4mm", "rigid", True),
+    ]
+    assert (table.members == 3).all()
+    landing = (work / "results/report/landing.rst").read_text()
+    section = landing[landing.index("Chaos of the flexible and the rigid mechanism") :]
+    section = section[: section.index("Accelerometer data used")]
+    for case in ("clearance-0.5mm", "clearance-0.1mm", "clearance-0.4mm"):
+        assert case in section
+    assert section.count("**rigid** (primary)") == section.count("**modal**:") == 3
+
+
 def _check_budget(work: Path) -> None:
     """benchmarks/workflow_budget.py --measured books every job's benchmark to its study."""
     import importlib.util
@@ -206,6 +228,7 @@ def test_quick_workflow_end_to_end(tmp_path):
     ):
         _check_file(work / name)
     _check_ensembles(work)
+    _check_exponent_comparison(work)
     _check_bifurcation(work)
     _check_budget(work)
     report = _snakemake(

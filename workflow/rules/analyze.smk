@@ -36,6 +36,7 @@ rule model_exponent:
         benchmark_file("model_exponent")
     wildcard_constraints:
         member="[0-9]+",
+        links="run|rigid|modal",
     conda:
         "../envs/sim.yaml"
     threads: 1

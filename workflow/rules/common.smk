@@ -167,11 +167,17 @@ def model_exponent_run(wildcards):
     return member_file(wildcards.study, wildcards.case, wildcards.member)
 
 
+def exponent_links(wildcards):
+    return resolver.exponent_links(SETTINGS[wildcards.study])
+
+
 def model_exponents_of_study(wildcards):
+    """Every member's exponent file, case by case, then link model by link model."""
     name = wildcards.study
     return [
-        path("model_exponent", study=name, case=case, member=k)
+        path("model_exponent", study=name, case=case, links=links, member=k)
         for case in case_names(name)
+        for links in exponent_links(wildcards)
         for k in range(ensemble_size(name))
     ]
 
@@ -310,8 +316,8 @@ def synthetic_kernels(wildcards):
 
 
 def model_exponent_kernels(wildcards):
-    """The member's own integrator, or DOPRI5 for the rigid-link exponent
+    """The member's own integrator, or DOPRI5 for the exponent on rigid or modal links
     (workflow/scripts/model_exponent.py)."""
-    if model_lyapunov_settings(wildcards)["links"] == "rigid":
-        return kernels(wildcards.study, {"solver.method": "dopri5"})
-    return case_kernels(wildcards)
+    if wildcards.links == "run":
+        return case_kernels(wildcards)
+    return kernels(wildcards.study, {"solver.method": "dopri5"})

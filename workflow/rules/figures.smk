@@ -187,6 +187,7 @@ rule model_exponent_table:
         "../envs/sim.yaml"
     params:
         cases=study_cases,
+        links=exponent_links,
         statistics=bootstrap_settings,
     script:
         "../scripts/model_exponent_table.py"

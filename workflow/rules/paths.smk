@@ -1,6 +1,6 @@
 """Every file the workflow writes, named once.
 
-`PATHS` maps a name to its pattern, with Snakemake's wildcards {study}, {case}, {member}:
+`PATHS` maps a name to its pattern, with Snakemake's wildcards {study}, {case}, {member}, ...:
 rules give the pattern itself (`output: PATHS["run"]`), helpers fill it in with `path(name,
 study=..., case=...)`, and scripts receive the files through `snakemake.input` and
 `snakemake.output`, never a literal. `JOBS` names each rule's log (logs/<stem>.log) and
@@ -20,8 +20,9 @@ PATHS = {
     "status": f"{STUDY}/status/{{case}}.json",
     # stage 2: chaos analysis (analyze.smk)
     "analysis": f"{STUDY}/analysis/{{case}}.nc",
-    # the model-based exponent of every member (member 0 included: the nominal run)
-    "model_exponent": f"{STUDY}/model-exponent/{{case}}/member-{{member}}.nc",
+    # the model-based exponent of every member (member 0 included: the nominal run) on each
+    # link model the study's model_lyapunov names ({links}: run, rigid or modal)
+    "model_exponent": f"{STUDY}/model-exponent/{{case}}/{{links}}/member-{{member}}.nc",
     # stage 3: sweeps (sweep.smk): a batch folder holds its points' run files and batch.nc
     "sweep_batch": f"{STUDY}/sweep/batch-{{batch}}",
     "bifurcation": f"{STUDY}/bifurcation.nc",
@@ -76,7 +77,7 @@ JOBS = {
     "run_ideal": "{study}/ideal/{case}",
     "run_tolerant": "{study}/status/{case}",
     "analyze": "{study}/analysis/{case}",
-    "model_exponent": "{study}/model-exponent/{case}/member-{member}",
+    "model_exponent": "{study}/model-exponent/{case}/{links}/member-{member}",
     "sweep_batch": "{study}/sweep/batch-{batch}",
     "combine_sweep": "{study}/bifurcation",
     "synthesize_recording": "{study}/recording/synthetic",

@@ -12,7 +12,7 @@ import pandas as pd
 import xarray as xr
 
 from sim.analysis.revolutions import Bootstrap
-from sim.claims import judge_all
+from sim.claims import exponent_comparison, judge_all
 from sim.results import scene_of
 
 
@@ -33,6 +33,7 @@ def main(sm) -> None:
     template = jinja2.Template(Path(sm.input.template).read_text())
     page = template.render(
         claims=claims,
+        exponents=exponent_comparison(inp),
         quick=sm.params.quick,
         studies=sm.params.studies,
         model=sm.params.model,

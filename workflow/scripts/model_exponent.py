@@ -1,7 +1,8 @@
 """The model-based largest Lyapunov exponent of one ensemble member (Benettin on the linkage,
 sim.studies.model_lyapunov) over the study's `model_lyapunov` duration, written atomically with
-the member's index, seed and perturbation. `links` takes it on the member's own links (`run`),
-on rigid links, or with every flexible link a modal link (`modal`, the scene's modes per link;
+the member's index, seed and perturbation. The `links` wildcard (one of the study's
+`model_lyapunov.links` and `compare`) takes it on the member's own links (`run`), on rigid
+links, or with every flexible link a modal link (`modal`, the scene's modes per link;
 docs/exponent.md, "Model convergence").
 
 The member's run file holds its scene as run, perturbation included (sim.run.simulate records
@@ -26,8 +27,9 @@ def main(sm) -> None:
     run = open_run(sm.input.run)
     tolerances = tuple(settings.get("tolerances", DEFAULT_TOLERANCES))
     scene = with_tolerances(scene_of(run), tolerances)
-    links = settings.get("links", "run")
-    rigid = links == "rigid" or bool(run.attrs.get("model_rigid", 0))
+    links = sm.wildcards.links
+    # a run made rigid by `sim run --rigid` keeps its scene's flexible bodies: `run` follows it
+    rigid = links == "rigid" or (links == "run" and bool(run.attrs.get("model_rigid", 0)))
     if links == "modal":
         scene = with_modal_links(scene)
     if rigid or links == "modal":
@@ -50,7 +52,7 @@ def main(sm) -> None:
             "source_run": str(sm.input.run),
             "model_lyapunov_revolutions": settings["revolutions"],
             "model_lyapunov_transient_revolutions": settings["transient"],
-            "model_lyapunov_links": settings.get("links", "run"),
+            "model_lyapunov_links": links,
         }
     )
     write_netcdf(out, sm.output[0])

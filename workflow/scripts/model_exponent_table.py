@@ -1,6 +1,7 @@
-"""Table of a study's model-based exponents over ensemble members: per case the median, a
-distribution-free interval for the median (sim.analysis.members) and the mean of the members'
-own standard errors."""
+"""Table of a study's model-based exponents over ensemble members: per case and link model
+the median, a distribution-free interval for the median (sim.analysis.members) and the mean of
+the members' own standard errors. The first link model of the study's (`links`, then
+`compare`) is the one its verdicts and claims read: its rows are marked `primary`."""
 
 import pandas as pd
 import xarray as xr
@@ -10,7 +11,7 @@ from sim.plots import tables
 
 
 def case_row(case: str, paths: list[str], level: float) -> dict:
-    """One case's row from its members' exponent files."""
+    """One case's row from its members' exponent files on one link model."""
     exponents, stderrs, attrs = [], [], {}
     for path in paths:
         with xr.open_dataset(path) as ds:
@@ -20,6 +21,7 @@ def case_row(case: str, paths: list[str], level: float) -> dict:
     interval = median_interval(exponents, level)
     return {
         "case": case,
+        "links": attrs["model_lyapunov_links"],
         "members": interval.n,
         "median_exponent_per_s": interval.median,
         "interval_low_per_s": interval.low,
@@ -28,27 +30,37 @@ def case_row(case: str, paths: list[str], level: float) -> dict:
         "mean_member_stderr_per_s": sum(stderrs) / len(stderrs),
         "revolutions": attrs["model_lyapunov_revolutions"],
         "transient_revolutions": attrs["model_lyapunov_transient_revolutions"],
-        "links": attrs["model_lyapunov_links"],
         "rtol": attrs["model_lyapunov_rtol"],
         "renormalisation_interval_s": attrs["model_lyapunov_interval_s"],
     }
 
 
+def files_by_model(paths: list[str]) -> dict[tuple[str, str], list[str]]:
+    """The exponent files grouped by (case, link model), as each file records them."""
+    groups: dict[tuple[str, str], list[str]] = {}
+    for path in paths:
+        with xr.open_dataset(path) as ds:
+            key = (str(ds.attrs["case"]), str(ds.attrs["model_lyapunov_links"]))
+        groups.setdefault(key, []).append(path)
+    return groups
+
+
 def main(sm) -> None:
-    cases = list(sm.params.cases)
-    per_case = len(sm.input) // len(cases)  # the input is case by case, members in order
+    links = list(sm.params.links)
     level = float(sm.params.statistics.get("level", 0.95))
-    table = pd.DataFrame(
-        [
-            case_row(case, sm.input[i * per_case : (i + 1) * per_case], level)
-            for i, case in enumerate(cases)
-        ]
-    )
+    groups = files_by_model(list(sm.input))
+    rows = [
+        case_row(case, groups[case, model], level) | {"primary": model == links[0]}
+        for case in sm.params.cases
+        for model in links
+    ]
+    table = pd.DataFrame(rows)
     note = (
-        "Benettin on the model's own integrator (on the links the links column names), one "
-        "exponent per ensemble member; interval: "
-        "order statistics of the members enclosing the population median with the stated "
-        f"coverage (the narrowest reaching {level:.0%}, else the range)"
+        "Benettin on the model's own integrator, on the link model the links column names "
+        f"(primary: {links[0]}, the one the verdicts and claims read), one exponent per "
+        "ensemble member; interval: order statistics of the members enclosing the population "
+        "median with the stated coverage (the narrowest reaching "
+        f"{level:.0%}, else the range)"
     )
     title = f"Model-based largest Lyapunov exponent over members: {sm.wildcards.study}"
     tables.write_table(table, sm.output.csv, sm.output.html, title, note)
