@@ -36,16 +36,14 @@ WARMUP_OVERRIDES = (
 )
 
 
-def compile_kernels(method: str, follower: bool = True) -> float:
+def compile_kernels(method: str) -> float:
     """Compile (or load from numba's cache) every kernel a run with integrator ``method``
     (``solver.method``: ``dopri5`` or ``generalized_alpha``) calls, by running the built-in
-    six-bar for 0.02 revolution with it, and with ``follower`` the lockstep follower of the
-    model exponent (sim.solve.lockstep) for it; returns the wall time in seconds."""
+    six-bar for 0.02 revolution with it, and the lockstep follower of the model exponent
+    (sim.solve.lockstep) for it; returns the wall time in seconds."""
     start = time.perf_counter()
     scene = load_scene("sixbar", [*WARMUP_OVERRIDES, f"solver.method={method}"])
     simulate(scene)
-    if follower:
-        integ = prepare(scene)
-        arguments = integ.follow_arguments(np.zeros(1), 0)
-        lockstep.follow.compile(tuple(numba.typeof(a) for a in arguments))
+    arguments = prepare(scene).follow_arguments(np.zeros(1), 0)
+    lockstep.follow.compile(tuple(numba.typeof(a) for a in arguments))
     return time.perf_counter() - start

@@ -10,15 +10,22 @@ from sim.analysis.members import median_interval
 from sim.plots import tables
 
 
-def case_row(case: str, paths: list[str], level: float) -> dict:
-    """One case's row from its members' exponent files on one link model."""
-    exponents, stderrs, attrs = [], [], {}
-    for path in paths:
-        with xr.open_dataset(path) as ds:
-            exponents.append(float(ds.model_lyapunov_exponent))
-            stderrs.append(float(ds.model_lyapunov_stderr))
-            attrs = dict(ds.attrs)
-    interval = median_interval(exponents, level)
+def read_member(path: str) -> dict:
+    """A member's exponent file: its case, link model, exponent, standard error and attributes."""
+    with xr.open_dataset(path) as ds:
+        return {
+            "case": str(ds.attrs["case"]),
+            "links": str(ds.attrs["model_lyapunov_links"]),
+            "exponent": float(ds.model_lyapunov_exponent),
+            "stderr": float(ds.model_lyapunov_stderr),
+            "attrs": dict(ds.attrs),
+        }
+
+
+def case_row(case: str, members: list[dict], level: float) -> dict:
+    """One case's row from its members' exponents on one link model (`read_member`)."""
+    interval = median_interval([m["exponent"] for m in members], level)
+    attrs = members[-1]["attrs"]
     return {
         "case": case,
         "links": attrs["model_lyapunov_links"],
@@ -27,7 +34,7 @@ def case_row(case: str, paths: list[str], level: float) -> dict:
         "interval_low_per_s": interval.low,
         "interval_high_per_s": interval.high,
         "interval_coverage": interval.coverage,
-        "mean_member_stderr_per_s": sum(stderrs) / len(stderrs),
+        "mean_member_stderr_per_s": sum(m["stderr"] for m in members) / len(members),
         "revolutions": attrs["model_lyapunov_revolutions"],
         "transient_revolutions": attrs["model_lyapunov_transient_revolutions"],
         "rtol": attrs["model_lyapunov_rtol"],
@@ -35,20 +42,13 @@ def case_row(case: str, paths: list[str], level: float) -> dict:
     }
 
 
-def files_by_model(paths: list[str]) -> dict[tuple[str, str], list[str]]:
-    """The exponent files grouped by (case, link model), as each file records them."""
-    groups: dict[tuple[str, str], list[str]] = {}
-    for path in paths:
-        with xr.open_dataset(path) as ds:
-            key = (str(ds.attrs["case"]), str(ds.attrs["model_lyapunov_links"]))
-        groups.setdefault(key, []).append(path)
-    return groups
-
-
 def main(sm) -> None:
     links = list(sm.params.links)
     level = float(sm.params.statistics.get("level", 0.95))
-    groups = files_by_model(list(sm.input))
+    groups: dict[tuple[str, str], list[dict]] = {}
+    for path in sm.input:
+        member = read_member(path)
+        groups.setdefault((member["case"], member["links"]), []).append(member)
     rows = [
         case_row(case, groups[case, model], level) | {"primary": model == links[0]}
         for case in sm.params.cases
