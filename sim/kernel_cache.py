@@ -17,10 +17,10 @@ import numba
 
 from sim.solve import stepping
 
-#: Compile time (s) of each method's integration loop from an empty cache on an idle 2-core
-#: machine (docs/performance.md, "Each integrator compiled once": DOPRI5 220 s,
-#: generalized-α 308 s); with the other core busy it takes about twice as long.
-COMPILE_SECONDS = {"dopri5": 220.0, "generalized_alpha": 308.0}
+#: Compile time (s) of each method's integration loop, after the right-hand side and the
+#: sample row, from an empty cache on this project's 2-core reference machine
+#: (docs/performance.md, "Start-up"); longer when other work shares the core.
+COMPILE_SECONDS = {"dopri5": 160.0, "generalized_alpha": 400.0}
 
 
 def _signature(args: tuple) -> tuple:
@@ -38,6 +38,12 @@ def is_cached(dispatcher, args: tuple) -> bool:
     return key in cache._cache_file._load_index()
 
 
+def cached_signatures(dispatcher) -> int:
+    """How many specialisations of `dispatcher` numba's on-disk cache holds: each argument
+    type it was ever compiled for with the current kernel sources."""
+    return len(dispatcher._cache._cache_file._load_index())
+
+
 def compile_integrator(args: tuple, method: str) -> float:
     """Compile, or load from the cache, the integration loop (`stepping.integrate`) for the
     types of its arguments `args`; when the cache does not hold it, say so on stderr with
@@ -50,8 +56,7 @@ def compile_integrator(args: tuple, method: str) -> float:
         minutes = COMPILE_SECONDS[method] / 60.0
         print(
             f"compiling the integrator's kernels for {method} (numba; once per install or "
-            f"change of the kernels, then cached): about {minutes:.0f} min on an idle 2-core "
-            f"machine, {2 * minutes:.0f} min with the other core busy",
+            f"change of the kernels, then cached): about {minutes:.0f} min on an idle core",
             file=sys.stderr,
             flush=True,
         )

@@ -194,6 +194,29 @@ def _shortest_dimension(scene: dict) -> float:
     return min(sizes)
 
 
+def solver_options(scene: dict, system: System) -> Options:
+    """The compiled integrator's options for a validated scene and its system: the solver
+    section's method and tolerances, the step bounds as fractions of the crank period, and
+    the failure bounds (constraint violation, penetration per clearance joint)."""
+    period = crank_period(scene)
+    solver = scene["solver"]
+    return Options(
+        method=method_of(solver),
+        rtol=float(solver["rtol"]),
+        atol=float(solver["atol"]),
+        hmax=solver["max_step_fraction"] * period,
+        hmin=1e-14 * period,
+        violation_bound=VIOLATION_BOUND * _shortest_dimension(scene),
+        max_steps=int(solver["max_steps"]),
+        pen_bound=np.concatenate(
+            [
+                PENETRATION_BOUND * system.rj["journal_radius"],
+                PENETRATION_BOUND * system.tj["width"],
+            ]
+        ),
+    )
+
+
 def prepare(
     scene: dict,
     *,
@@ -225,22 +248,7 @@ def prepare(
     sec_t = np.arange(math.floor(n_rev + 1e-9) + 1) * period
     width = row_width(len(layout.bodies), len(layout.clearance_joints))
     n_peaks = peak_width(len(layout.bodies), len(layout.clearance_joints))
-    solver = scene["solver"]
-    options = Options(
-        method=method_of(solver),
-        rtol=float(solver["rtol"]),
-        atol=float(solver["atol"]),
-        hmax=solver["max_step_fraction"] * period,
-        hmin=1e-14 * period,
-        violation_bound=VIOLATION_BOUND * _shortest_dimension(scene),
-        max_steps=int(solver["max_steps"]),
-        pen_bound=np.concatenate(
-            [
-                PENETRATION_BOUND * system.rj["journal_radius"],
-                PENETRATION_BOUND * system.tj["width"],
-            ]
-        ),
-    )
+    options = solver_options(scene, system)
     clock = np.zeros(1, dtype=CLOCK)
     clock[0]["h"] = min(1e-5 * period, options.hmax)
     clock[0]["facold"] = ERR_OLD_MIN

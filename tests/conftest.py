@@ -4,11 +4,15 @@ From an empty numba cache (a fresh clone, CI, an edit of any kernel) the first r
 integrator compiles its loop and its lockstep follower for minutes
 (`sim.kernel_cache.COMPILE_SECONDS`); in one pytest process the two integrators' compiles come
 one after the other on one core. `pytest_sessionstart` runs them at once in two processes, as the
-workflow's `compile_kernels` rule does (`sim.studies.kernels`), into the on-disk cache the tests
-then load, so on a 2-core machine the suite waits for the slower compile, not for both. With
-the kernels cached each process returns in about three seconds.
+workflow's `compile_kernels` rule does (`sim.studies.kernels`, whose order lets the two share
+the kernels common to both methods), into the on-disk cache the tests then load. With the
+kernels cached each process returns in about three seconds.
+
+The tests then run on every core (pytest-xdist, ``-n auto`` in pyproject.toml): its workers
+start after this set-up (xdist starts them in its own, last, session start) and skip it.
 """
 
+import os
 import subprocess
 import sys
 import time
@@ -20,6 +24,8 @@ COMPILE = "from sim.studies.kernels import compile_kernels; compile_kernels({!r}
 
 
 def pytest_sessionstart(session) -> None:
+    if "PYTEST_XDIST_WORKER" in os.environ:
+        return  # the controller compiled before starting the workers
     start = time.perf_counter()
     jobs = [
         (method, subprocess.Popen([sys.executable, "-c", COMPILE.format(method)]))

@@ -24,6 +24,7 @@ on-disk cache keeps both (a loop built by a factory closing over the method's ke
 miss the cache in every new process: numba issue #6264).
 """
 
+from types import ModuleType
 from typing import NamedTuple
 
 import numpy as np
@@ -53,6 +54,11 @@ def method_of(solver: dict) -> Dopri5 | GeneralizedAlpha:
 
 _MODULES = {Dopri5: dopri, GeneralizedAlpha: galpha}
 _JIT = {"_nrt": False}  # as sim.jit.kernel
+
+
+def implementation(method: Dopri5 | GeneralizedAlpha) -> ModuleType:
+    """The module that implements Options.method (sim.solve.dopri or sim.solve.galpha)."""
+    return _MODULES[type(method)]
 
 
 def _module(options):

@@ -17,6 +17,7 @@ Kept free of heavy imports: the workflow reads it on every parse (workflow/rules
 
 from collections.abc import Mapping
 from decimal import Decimal
+from functools import cache
 from typing import Any, NamedTuple
 
 from sim.studies.grid import sweep_grid
@@ -30,6 +31,9 @@ MERGED_KEYS = ("ensemble", "model_lyapunov")
 IDEAL_IGNORED = (".clearance", ".kind", ".elements", "solver.method", "solver.rho_inf")
 #: keys of the config's link model that `force_model` puts over a study's own
 FORCED_MODEL_KEYS = ("links", "elements", "modes", "axial_modes", "solver")
+#: the integrator of a member's exponent on rigid or modal links (`model_lyapunov.links` and
+#: `compare`): the explicit method, exact for the first and cheapest for both
+REDUCED_LINKS_METHOD = "dopri5"
 
 
 class ConfigError(ValueError):
@@ -257,6 +261,34 @@ def exponent_links(settings: Mapping) -> list[str]:
     exponent = settings["model_lyapunov"]
     primary = exponent["links"]
     return [primary] + [links for links in exponent.get("compare", []) if links != primary]
+
+
+# ---------------------------------------------------------------- integrators
+@cache
+def scene_method(scene: str) -> str:
+    """The integrator (`solver.method`) a scene names when no override sets it."""
+    from sim.scene import load_scene
+
+    return load_scene(scene)["solver"]["method"]
+
+
+def run_method(settings: Mapping, overrides: Mapping) -> str:
+    """The integrator of a run of the study with these scene overrides: theirs, else the
+    scene's own."""
+    return overrides.get("solver.method", scene_method(settings["scene"]))
+
+
+def sweep_method(settings: Mapping) -> str:
+    """The integrator a sweep's points share: its first point's."""
+    return run_method(settings, case_overrides(settings, sweep_points(settings)[0][0]))
+
+
+def exponent_method(settings: Mapping, case: str, links: str) -> str:
+    """The integrator of a member's exponent on `links` (`exponent_links`): the member's own
+    on `run`, REDUCED_LINKS_METHOD on rigid or modal links."""
+    if links == "run":
+        return run_method(settings, case_overrides(settings, case))
+    return REDUCED_LINKS_METHOD
 
 
 # ---------------------------------------------------------------- fidelity study

@@ -1,14 +1,17 @@
 """The workflow's compile step (sim.studies.kernels): after it, a run of any link model with
-the same integrator compiles nothing more, so the jobs that follow it only load the cache."""
+the same integrator compiles nothing more, so the jobs that follow it only load the cache; and
+a step it compiles ahead of the loop is the one the loop calls, not a second specialisation."""
 
 import sys
 
 import numba
 import pytest
 
+from sim.kernel_cache import cached_signatures
 from sim.run import simulate
 from sim.scene import load_scene
-from sim.studies.kernels import compile_kernels
+from sim.solve.methods import implementation, method_of
+from sim.studies.kernels import STEP_FIRST, compile_kernels
 
 SHORT = ["joints.A.clearance=5e-4", "joints.B.clearance=5e-4", "simulation.revolutions=0.02"]
 LINKS = {
@@ -43,3 +46,8 @@ def test_no_kernel_compiles_after_the_compile_step(method):
         simulate(scene)
         simulate(scene, ideal=True, rigid=True)
     assert compiled_signatures() == before
+    if method in STEP_FIRST:
+        # the step compiled ahead of the loop has the loop's argument types: had the loop
+        # passed others, it would have compiled, and cached, a second specialisation
+        step = implementation(method_of(scene["solver"])).step
+        assert cached_signatures(step) == 1

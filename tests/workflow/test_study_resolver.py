@@ -24,9 +24,11 @@ def _validated(config: dict) -> dict:
 
 
 def _config(**study) -> dict:
-    """A minimal config: one study `s` on the six-bar, the default scene."""
+    """A minimal config: one study `s` on the six-bar, the default scene; a key of `study`
+    set to None is left out."""
     entry = {"title": "t", "analyses": ["responses"], "cases": {"c": {"drive.speed_rpm": 60.0}}}
     entry.update(study)
+    entry = {key: value for key, value in entry.items() if value is not None}
     duration = {"scene": "sixbar", "revolutions": 10, "output_per_revolution": 20}
     return _validated(
         {
@@ -117,6 +119,26 @@ def test_exponent_links_lead_with_the_primary_model_and_keep_the_comparison_orde
     lyapunov = {"links": "modal", "compare": ["rigid", "modal", "run"]}
     settings = resolver.study_settings(_config(model_lyapunov=lyapunov), "s")
     assert resolver.exponent_links(settings) == ["modal", "rigid", "run"]
+
+
+def test_each_run_compiles_the_integrator_it_runs():
+    # the config's link model sets generalized-α; a case may set its own; the built-in
+    # six-bar scene names DOPRI5; the exponent on reduced links takes the explicit method
+    cases = {"c": {}, "d": {"solver.method": "dopri5"}}
+    settings = resolver.study_settings(_config(cases=cases), "s")
+    assert resolver.scene_method("sixbar") == "dopri5"
+    for case, method in (("c", "generalized_alpha"), ("d", "dopri5")):
+        overrides = resolver.case_overrides(settings, case)
+        assert resolver.run_method(settings, overrides) == method
+        assert resolver.exponent_method(settings, case, "run") == method
+        for links in ("rigid", "modal"):
+            assert resolver.exponent_method(settings, case, links) == "dopri5"
+    assert resolver.run_method(settings, {}) == "dopri5"  # the scene's own
+    sweep = {"keys": ["drive.speed_rpm"], "label": "v", "unit": "rpm", "values": [30.0]}
+    sweep.update(batch=1, lyapunov_alignment=1)
+    for study, method in (({}, "generalized_alpha"), ({"solver.method": "dopri5"}, "dopri5")):
+        settings = resolver.study_settings(_config(cases=None, sweep=sweep, overrides=study), "s")
+        assert resolver.sweep_method(settings) == method
 
 
 def test_fidelity_grid_reproduces_the_cases_once_typed_by_hand():

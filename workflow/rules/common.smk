@@ -6,14 +6,14 @@ Rules call these functions by name (no lambdas inside rules). File names are tho
 paths.smk (`PATHS`, `path`), included before this file.
 """
 
-import functools
 import importlib.util
 import shlex
+from functools import reduce
+from operator import getitem
 from pathlib import Path
 
 from snakemake.utils import validate
 
-from sim.scene import load_scene
 from sim.studies import config as resolver
 
 validate(config, schema="../schemas/config.schema.yaml", set_default=True)
@@ -23,6 +23,9 @@ DEFAULTS = resolver.defaults(config)
 SETTINGS = resolver.resolve(config)
 STUDIES = list(SETTINGS)
 resolver.check_scenes(SETTINGS)
+#: the cross-check study's runs need Exudyn (pip install -e '.[crosscheck]'); without it the
+#: study writes only its table, which says so
+EXUDYN = importlib.util.find_spec("exudyn") is not None
 
 
 wildcard_constraints:
@@ -31,9 +34,17 @@ wildcard_constraints:
     member="[1-9][0-9]*",
 
 
-def setting(key):
-    """An adapter giving the study's resolved setting `key`."""
-    return lambda wildcards: SETTINGS[wildcards.study][key]
+def setting(*keys):
+    """An adapter giving the study's resolved setting at the nested `keys`."""
+    return lambda wildcards: reduce(getitem, keys, SETTINGS[wildcards.study])
+
+
+def resolved(function, *names):
+    """An adapter giving resolver `function` of the study's settings and the wildcards
+    `names` (e.g. resolved(resolver.member_draw, "member"))."""
+    return lambda wildcards: function(
+        SETTINGS[wildcards.study], *(getattr(wildcards, name) for name in names)
+    )
 
 
 def files_of_cases(file):
@@ -41,55 +52,57 @@ def files_of_cases(file):
     return lambda wildcards: paths_of_study(file, wildcards.study, case_names(wildcards.study))
 
 
-scene_name = setting("scene")
-transient = setting("transient")
-run_timeout = setting("timeout_s")
-sweep_settings = setting("sweep")
-model_lyapunov_settings = setting("model_lyapunov")
-runs_of_study = files_of_cases("run")
-ideals_of_study = files_of_cases("ideal")
-statuses_of_study = files_of_cases("status")
+def as_texts(function, *names):
+    """An adapter giving the overrides of resolver `function` (as `resolved`) as `key=value`
+    texts, as `sim run --set` takes them."""
+    overrides = resolved(function, *names)
+    return lambda wildcards: [f"{key}={value}" for key, value in overrides(wildcards).items()]
 
 
-def extreme_checks(wildcards):
-    return SETTINGS[wildcards.study].get("checks", {})
+def as_sets(function, *names):
+    """An adapter giving the overrides of resolver `function` as `sim` command-line options."""
+    texts = as_texts(function, *names)
+    return lambda wildcards: " ".join(f"--set {shlex.quote(text)}" for text in texts(wildcards))
 
 
 def case_names(name):
     return resolver.case_names(SETTINGS[name])
 
 
-def has(name, analysis):
-    return analysis in SETTINGS[name]["analyses"]
+def ensemble_size(name):
+    return resolver.ensemble_size(SETTINGS[name])
 
 
-def case_overrides(name, case):
-    return resolver.case_overrides(SETTINGS[name], case)
+scene_name = setting("scene")
+transient = setting("transient")
+run_timeout = setting("timeout_s")
+sweep_settings = setting("sweep")
+model_lyapunov_settings = setting("model_lyapunov")
+crosscheck_lowpass = setting("crosscheck", "lowpass_hz")
+synthetic_seed = setting("experiment", "synthetic", "seed")
+study_cases = resolved(resolver.case_names)
+runs_of_study = files_of_cases("run")
+ideals_of_study = files_of_cases("ideal")
+statuses_of_study = files_of_cases("status")
+case_overrides = resolved(resolver.case_overrides, "case")
+run_sets = as_sets(resolver.case_overrides, "case")
+ideal_sets = as_sets(resolver.ideal_overrides, "case")
+member_draw = resolved(resolver.member_draw, "member")
+sweep_base_overrides = as_texts(resolver.sweep_base_overrides)
+member_overrides = as_texts(resolver.member_overrides, "case")
+fidelity_settings = resolved(resolver.fidelity_settings)
+exponent_links = resolved(resolver.exponent_links)
+synthetic_overrides = resolved(resolver.synthetic_overrides)
+synthetic_sets = as_sets(resolver.synthetic_overrides)
+crosscheck_overrides = case_overrides
 
 
-def format_sets(overrides):
-    return " ".join(f"--set {shlex.quote(f'{key}={value}')}" for key, value in overrides.items())
-
-
-def as_texts(overrides):
-    """Overrides as `key=value` texts, as `sim run --set` takes them."""
-    return [f"{key}={value}" for key, value in overrides.items()]
-
-
-def run_sets(wildcards):
-    return format_sets(case_overrides(wildcards.study, wildcards.case))
-
-
-def ideal_sets(wildcards):
-    return format_sets(resolver.ideal_overrides(SETTINGS[wildcards.study], wildcards.case))
+def extreme_checks(wildcards):
+    return SETTINGS[wildcards.study].get("checks", {})
 
 
 def crank_rpm(wildcards):
-    return case_overrides(wildcards.study, wildcards.case)["drive.speed_rpm"]
-
-
-def study_cases(wildcards):
-    return case_names(wildcards.study)
+    return case_overrides(wildcards)["drive.speed_rpm"]
 
 
 def bootstrap_settings(wildcards=None):
@@ -104,22 +117,10 @@ def member_file(name, case, member):
     return path("member", study=name, case=case, member=member)
 
 
-def ensemble_size(name):
-    return resolver.ensemble_size(SETTINGS[name])
-
-
 def members_of_study(wildcards):
     name = wildcards.study
     k_all = range(ensemble_size(name))
     return [member_file(name, case, k) for case in case_names(name) for k in k_all]
-
-
-def member_draw(wildcards):
-    return resolver.member_draw(SETTINGS[wildcards.study], wildcards.member)
-
-
-def member_overrides(wildcards):
-    return as_texts(resolver.member_overrides(SETTINGS[wildcards.study], wildcards.case))
 
 
 def ideal_reference_of_case(wildcards):
@@ -130,9 +131,7 @@ def ideal_reference_of_case(wildcards):
     return []
 
 
-# ---------------------------------------------------------------- sweeps
-
-
+# ---------------------------------------------------------------- sweeps, fidelity, exponents
 def sweep_parameter(wildcards):
     return ",".join(SETTINGS[wildcards.study]["sweep"]["keys"])
 
@@ -146,29 +145,13 @@ def batch_points(wildcards):
     return resolver.sweep_batches(SETTINGS[wildcards.study])[int(wildcards.batch)]
 
 
-def sweep_base_overrides(wildcards):
-    return as_texts(resolver.sweep_base_overrides(SETTINGS[wildcards.study]))
-
-
-# ---------------------------------------------------------------- fidelity
 def fidelity_analyses(wildcards):
     cases = resolver.fidelity_long_cases(SETTINGS[wildcards.study])
     return paths_of_study("analysis", wildcards.study, cases)
 
 
-def fidelity_settings(wildcards):
-    return resolver.fidelity_settings(SETTINGS[wildcards.study])
-
-
-# ---------------------------------------------------------------- model exponent over members
-
-
 def model_exponent_run(wildcards):
     return member_file(wildcards.study, wildcards.case, wildcards.member)
-
-
-def exponent_links(wildcards):
-    return resolver.exponent_links(SETTINGS[wildcards.study])
 
 
 def model_exponents_of_study(wildcards):
@@ -182,22 +165,9 @@ def model_exponents_of_study(wildcards):
     ]
 
 
-# ---------------------------------------------------------------- cross-check (Exudyn)
-#: the cross-check study's runs need Exudyn (pip install -e '.[crosscheck]'); without it the
-#: study writes only its table, which says so
-EXUDYN = importlib.util.find_spec("exudyn") is not None
-
-
-def crosscheck_overrides(wildcards):
-    return case_overrides(wildcards.study, wildcards.case)
-
-
+# ---------------------------------------------------------------- cross-check and experiment
 def crosscheck_exudyn(wildcards):
     return SETTINGS[wildcards.study]["crosscheck"]["exudyn"].get(wildcards.case, {})
-
-
-def crosscheck_lowpass(wildcards):
-    return SETTINGS[wildcards.study]["crosscheck"]["lowpass_hz"]
 
 
 def crosscheck_metrics(wildcards):
@@ -207,7 +177,6 @@ def crosscheck_metrics(wildcards):
     return paths_of_study("crosscheck_metrics", wildcards.study, case_names(wildcards.study))
 
 
-# ---------------------------------------------------------------- experiment data
 def recording_file(wildcards):
     """The measured recording of the study if it exists, else the synthetic one."""
     measured = SETTINGS[wildcards.study]["experiment"].get("recording")
@@ -219,18 +188,6 @@ def recording_file(wildcards):
 def recording_meta(wildcards):
     """The metadata beside the recording (data/experiment/README.md: <name>.meta.yaml)."""
     return recording_file(wildcards)[: -len(".csv")] + ".meta.yaml"
-
-
-def synthetic_overrides(wildcards):
-    return resolver.synthetic_overrides(SETTINGS[wildcards.study])
-
-
-def synthetic_sets(wildcards):
-    return format_sets(synthetic_overrides(wildcards))
-
-
-def synthetic_seed(wildcards):
-    return SETTINGS[wildcards.study]["experiment"]["synthetic"]["seed"]
 
 
 def sensor_option(wildcards):
@@ -281,43 +238,29 @@ def landing_recording(wildcards):
 
 
 # ---------------------------------------------------------------- compiled kernels
-@functools.cache
-def scene_method(scene):
-    """The integrator (`solver.method`) a scene names when no override sets it."""
-    return load_scene(scene)["solver"]["method"]
-
-
-def kernels(name, overrides):
-    """The marker of rule compile_kernels for the integrator that a run of study `name` with
-    these scene overrides uses. Its age does not count (`ancient`): it only makes that
-    integrator's kernels compile once, before its first run."""
-    method = overrides.get("solver.method", scene_method(SETTINGS[name]["scene"]))
+def kernels(method):
+    """The marker of rule compile_kernels for integrator `method`. Its age does not count
+    (`ancient`): it only makes that integrator's kernels compile once, before its first run."""
     return ancient(path("kernels", method=method))
 
 
 def case_kernels(wildcards):
-    return kernels(wildcards.study, case_overrides(wildcards.study, wildcards.case))
+    return kernels(resolver.run_method(SETTINGS[wildcards.study], case_overrides(wildcards)))
 
 
 def ideal_kernels(wildcards):
     """An ideal reference runs the scene's own integrator (resolver.IDEAL_IGNORED)."""
-    return kernels(wildcards.study, {})
+    return kernels(resolver.scene_method(SETTINGS[wildcards.study]["scene"]))
 
 
 def sweep_kernels(wildcards):
-    """A sweep's points share their integrator: its first point's."""
-    settings = SETTINGS[wildcards.study]
-    first = resolver.sweep_points(settings)[0][0]
-    return kernels(wildcards.study, resolver.case_overrides(settings, first))
+    return kernels(resolver.sweep_method(SETTINGS[wildcards.study]))
 
 
 def synthetic_kernels(wildcards):
-    return kernels(wildcards.study, synthetic_overrides(wildcards))
+    return kernels(resolver.run_method(SETTINGS[wildcards.study], synthetic_overrides(wildcards)))
 
 
 def model_exponent_kernels(wildcards):
-    """The member's own integrator, or DOPRI5 for the exponent on rigid or modal links
-    (workflow/scripts/model_exponent.py)."""
-    if wildcards.links == "run":
-        return case_kernels(wildcards)
-    return kernels(wildcards.study, {"solver.method": "dopri5"})
+    links = wildcards.links
+    return kernels(resolver.exponent_method(SETTINGS[wildcards.study], wildcards.case, links))

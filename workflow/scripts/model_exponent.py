@@ -9,6 +9,7 @@ The member's run file holds its scene as run, perturbation included (sim.run.sim
 the perturbed scene), so the exponent starts exactly where the member's run started."""
 
 from sim.results import open_run, scene_of, write_netcdf
+from sim.studies.config import REDUCED_LINKS_METHOD
 from sim.studies.model_lyapunov import (
     DEFAULT_INTERVAL_REVOLUTIONS,
     DEFAULT_TOLERANCES,
@@ -33,7 +34,7 @@ def main(sm) -> None:
     if links == "modal":
         scene = with_modal_links(scene)
     if rigid or links == "modal":
-        scene["solver"]["method"] = "dopri5"  # rigid and modal links: the explicit method
+        scene["solver"]["method"] = REDUCED_LINKS_METHOD
     result = linkage_lyapunov(
         scene,
         revolutions=settings["revolutions"],
