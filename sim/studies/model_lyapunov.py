@@ -252,8 +252,11 @@ def linkage_lyapunov(
             The default 1e-6 m keeps a decade to the floor at the default tolerances.
         interval_revolutions: short enough that the separation grows by little more than one
             e-fold (λ · interval ≲ 1.5); the default 1/32 revolution (12.5 ms at 150 rpm)
-            suits exponents up to ~120 1/s, and 1/16 … 1/128 read the same on the flagship
-            (rigid 56.9, 57.3, 58.3; modal 270.7 and 269.9 at 1/32 and 1/128, ± 2–6 1/s).
+            suits exponents up to ~120 1/s, and 1/16 … 1/512 read the same on the flagship
+            (rigid 56.9, 57.3, 58.3, 60.4, 62.8; modal 270.7 and 269.9 at 1/32 and 1/128,
+            ± 2–6 1/s). Not at the harder points: at 0.1 mm the default reads 10–20 % low,
+            and at 30 rpm the exponent rises with shorter intervals without settling
+            (docs/exponent.md, "The harder points").
         transient_revolutions: let the reference settle on its attractor and the separation
             align with the most unstable direction; as for the run's analyses (20 by default).
         Check with a second setting (d0 · 10, interval / 2) that the exponent does not move
