@@ -278,17 +278,20 @@ def run_method(settings: Mapping, overrides: Mapping) -> str:
     return overrides.get("solver.method", scene_method(settings["scene"]))
 
 
+def case_method(settings: Mapping, case: str) -> str:
+    """The integrator of one case's run (a sweep point's, an ensemble member's)."""
+    return run_method(settings, case_overrides(settings, case))
+
+
 def sweep_method(settings: Mapping) -> str:
     """The integrator a sweep's points share: its first point's."""
-    return run_method(settings, case_overrides(settings, sweep_points(settings)[0][0]))
+    return case_method(settings, sweep_points(settings)[0][0])
 
 
 def exponent_method(settings: Mapping, case: str, links: str) -> str:
     """The integrator of a member's exponent on `links` (`exponent_links`): the member's own
     on `run`, REDUCED_LINKS_METHOD on rigid or modal links."""
-    if links == "run":
-        return run_method(settings, case_overrides(settings, case))
-    return REDUCED_LINKS_METHOD
+    return case_method(settings, case) if links == "run" else REDUCED_LINKS_METHOD
 
 
 # ---------------------------------------------------------------- fidelity study

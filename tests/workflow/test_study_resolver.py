@@ -130,6 +130,7 @@ def test_each_run_compiles_the_integrator_it_runs():
     for case, method in (("c", "generalized_alpha"), ("d", "dopri5")):
         overrides = resolver.case_overrides(settings, case)
         assert resolver.run_method(settings, overrides) == method
+        assert resolver.case_method(settings, case) == method
         assert resolver.exponent_method(settings, case, "run") == method
         for links in ("rigid", "modal"):
             assert resolver.exponent_method(settings, case, links) == "dopri5"

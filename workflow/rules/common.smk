@@ -94,7 +94,6 @@ fidelity_settings = resolved(resolver.fidelity_settings)
 exponent_links = resolved(resolver.exponent_links)
 synthetic_overrides = resolved(resolver.synthetic_overrides)
 synthetic_sets = as_sets(resolver.synthetic_overrides)
-crosscheck_overrides = case_overrides
 
 
 def extreme_checks(wildcards):
@@ -245,7 +244,7 @@ def kernels(method):
 
 
 def case_kernels(wildcards):
-    return kernels(resolver.run_method(SETTINGS[wildcards.study], case_overrides(wildcards)))
+    return kernels(resolver.case_method(SETTINGS[wildcards.study], wildcards.case))
 
 
 def ideal_kernels(wildcards):

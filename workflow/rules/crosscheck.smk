@@ -33,7 +33,7 @@ rule crosscheck_case:
         runtime=240,
     params:
         scene=scene_name,
-        overrides=crosscheck_overrides,
+        overrides=case_overrides,
         exudyn=crosscheck_exudyn,
         lowpass_hz=crosscheck_lowpass,
         transient=transient,
