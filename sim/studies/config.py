@@ -179,6 +179,21 @@ def sweep_batches(settings: Mapping) -> list[list[tuple[str, float]]]:
     return [points[k : k + size] for k in range(0, len(points), size)]
 
 
+def sweep_batch(settings: Mapping, batch: int | str) -> list[tuple[str, float]]:
+    """The points of one batch of a sweep study (`sweep_batches`)."""
+    return sweep_batches(settings)[int(batch)]
+
+
+def batch_files(settings: Mapping) -> list[tuple[str, dict]]:
+    """(file name, wildcards) of every batch directory of a sweep study."""
+    return [("sweep_batch", {"batch": k}) for k in range(len(sweep_batches(settings)))]
+
+
+def sweep_parameter(settings: Mapping) -> str:
+    """The swept scene keys, comma-separated (`sim sweep-collect --parameter`)."""
+    return ",".join(settings["sweep"]["keys"])
+
+
 def link_overrides(model: Mapping) -> dict[str, Any]:
     """Scene keys of a link model and its integrator (config `model`)."""
     out = {f"solver.{key}": value for key, value in model.get("solver", {}).items()}
@@ -215,6 +230,17 @@ def case_overrides(settings: Mapping, case: str) -> dict[str, Any]:
     return out
 
 
+def crank_rpm(settings: Mapping, case: str) -> float:
+    """The crank speed (rpm) of one case's run."""
+    return case_overrides(settings, case)["drive.speed_rpm"]
+
+
+def ideal_reference(settings: Mapping, case: str) -> list[tuple[str, dict]]:
+    """(file name, wildcards) of the ideal run a case is compared with: only the study's
+    `ideal_reference` case has one (clearance 0 must reproduce the ideal joint)."""
+    return [("ideal", {"case": case})] if settings.get("ideal_reference") == case else []
+
+
 def ideal_overrides(settings: Mapping, case: str) -> dict[str, Any]:
     """A case's overrides for its ideal reference run (`--ideal --rigid` ignores the
     clearance and link keys, so changing them does not rerun the reference)."""
@@ -245,6 +271,20 @@ def member_overrides(settings: Mapping, case: str) -> dict[str, Any]:
     return overrides
 
 
+def member_file(case: str, member: int | str) -> tuple[str, dict]:
+    """(file name, wildcards) of member `member`'s run of a case: member 0 is the case's
+    nominal run."""
+    if int(member) == 0:
+        return "run", {"case": case}
+    return "member", {"case": case, "member": member}
+
+
+def member_files(settings: Mapping) -> list[tuple[str, dict]]:
+    """`member_file` of every member of every case, case by case."""
+    members = range(ensemble_size(settings))
+    return [member_file(case, k) for case in case_names(settings) for k in members]
+
+
 def member_draw(settings: Mapping, member: int) -> dict[str, Any]:
     """Arguments of sim.ensemble.member for one member: index, base seed and, if the config
     states it, the perturbation's size (deg; else sim.ensemble's default)."""
@@ -263,6 +303,17 @@ def exponent_links(settings: Mapping) -> list[str]:
     return [primary] + [links for links in exponent.get("compare", []) if links != primary]
 
 
+def exponent_files(settings: Mapping) -> list[tuple[str, dict]]:
+    """(file name, wildcards) of every member's exponent, case by case, then link model by
+    link model (`exponent_links`)."""
+    return [
+        ("model_exponent", {"case": case, "links": links, "member": k})
+        for case in case_names(settings)
+        for links in exponent_links(settings)
+        for k in range(ensemble_size(settings))
+    ]
+
+
 # ---------------------------------------------------------------- integrators
 @cache
 def scene_method(scene: str) -> str:
@@ -276,6 +327,11 @@ def run_method(settings: Mapping, overrides: Mapping) -> str:
     """The integrator of a run of the study with these scene overrides: theirs, else the
     scene's own."""
     return overrides.get("solver.method", scene_method(settings["scene"]))
+
+
+def ideal_method(settings: Mapping) -> str:
+    """The integrator of an ideal reference run: the scene's own (`IDEAL_IGNORED`)."""
+    return scene_method(settings["scene"])
 
 
 def case_method(settings: Mapping, case: str) -> str:
@@ -328,6 +384,28 @@ def synthetic_overrides(settings: Mapping) -> dict[str, Any]:
     overrides = case_overrides(settings, case_names(settings)[0])
     overrides.update(settings["experiment"]["synthetic"].get("overrides", {}))
     return overrides
+
+
+def synthetic_method(settings: Mapping) -> str:
+    """The integrator of the synthetic recording's run."""
+    return run_method(settings, synthetic_overrides(settings))
+
+
+def synthetic_sensor(settings: Mapping) -> str | None:
+    """The sensor file the synthetic recording is measured with, if the study names one."""
+    return settings["experiment"]["synthetic"].get("sensor")
+
+
+# ---------------------------------------------------------------- extremes and cross-check
+def extreme_checks(settings: Mapping) -> dict[str, Any]:
+    """The bounds each run of an extremes study must keep (energy error, constraint violation,
+    ...: config `checks`; none when the study sets none)."""
+    return settings.get("checks", {})
+
+
+def exudyn_settings(settings: Mapping, case: str) -> dict[str, Any]:
+    """The cross-check's Exudyn settings of one case (none: the defaults)."""
+    return settings["crosscheck"]["exudyn"].get(case, {})
 
 
 # ---------------------------------------------------------------- the plan's scenes

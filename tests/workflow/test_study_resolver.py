@@ -186,6 +186,32 @@ def test_member_overrides_and_draw():
     assert resolver.ensemble_size(resolver.study_settings(_config(), "s")) == 1
 
 
+def test_the_files_of_members_exponents_and_batches():
+    # member 0 of a case is its nominal run; exponents go case, link model, member
+    lyapunov = {"links": "modal", "compare": ["rigid"]}
+    config = _config(analyses=["peaks"], cases={"c": {}, "d": {}}, model_lyapunov=lyapunov)
+    settings = resolver.study_settings(config, "s")
+    assert resolver.member_files(settings) == [
+        ("run", {"case": "c"}),
+        ("member", {"case": "c", "member": 1}),
+        ("run", {"case": "d"}),
+        ("member", {"case": "d", "member": 1}),
+    ]
+    assert resolver.member_file("d", "0") == ("run", {"case": "d"})
+    exponents = [tuple(w.values()) for _, w in resolver.exponent_files(settings)]
+    assert exponents == [
+        (case, links, k) for case in "cd" for links in ("modal", "rigid") for k in (0, 1)
+    ]
+    # five sweep points in batches of two: three batches, the last one short
+    sweep = {"keys": ["drive.speed_rpm"], "label": "v", "unit": "rpm", "batch": 2}
+    sweep.update(values=[30.0, 60.0, 90.0, 120.0, 150.0], lyapunov_alignment=1)
+    settings = resolver.study_settings(_config(cases=None, sweep=sweep), "s")
+    assert resolver.batch_files(settings) == [("sweep_batch", {"batch": k}) for k in range(3)]
+    assert resolver.sweep_batch(settings, "2") == [("v-150rpm", 150.0)]
+    assert resolver.crank_rpm(settings, "v-90rpm") == 90.0
+    assert resolver.sweep_parameter(settings) == "drive.speed_rpm"
+
+
 def test_members_no_longer_than_the_transient_are_refused():
     with pytest.raises(resolver.ConfigError, match=r"studies\.s\.ensemble\.revolutions"):
         resolver.study_settings(_config(analyses=["peaks"], transient=8), "s")

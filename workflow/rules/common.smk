@@ -47,9 +47,19 @@ def resolved(function, *names):
     )
 
 
-def files_of_cases(file):
-    """An adapter giving the file `file` (paths.smk) of every case of the study."""
-    return lambda wildcards: paths_of_study(file, wildcards.study, case_names(wildcards.study))
+def files(function, *names):
+    """An adapter giving the paths of the (file name, wildcards) pairs that resolver
+    `function` (as `resolved`) lists for the study."""
+    pairs = resolved(function, *names)
+    return lambda wildcards: [
+        path(file, study=wildcards.study, **more) for file, more in pairs(wildcards)
+    ]
+
+
+def files_of_cases(file, cases=resolver.case_names):
+    """An adapter giving the file `file` (paths.smk) of every case of the study (or of the
+    resolver's `cases` of it)."""
+    return lambda wildcards: paths_of_study(file, wildcards.study, cases(SETTINGS[wildcards.study]))
 
 
 def as_texts(function, *names):
@@ -63,14 +73,6 @@ def as_sets(function, *names):
     """An adapter giving the overrides of resolver `function` as `sim` command-line options."""
     texts = as_texts(function, *names)
     return lambda wildcards: " ".join(f"--set {shlex.quote(text)}" for text in texts(wildcards))
-
-
-def case_names(name):
-    return resolver.case_names(SETTINGS[name])
-
-
-def ensemble_size(name):
-    return resolver.ensemble_size(SETTINGS[name])
 
 
 scene_name = setting("scene")
@@ -88,92 +90,38 @@ case_overrides = resolved(resolver.case_overrides, "case")
 run_sets = as_sets(resolver.case_overrides, "case")
 ideal_sets = as_sets(resolver.ideal_overrides, "case")
 member_draw = resolved(resolver.member_draw, "member")
+members_of_study = files(resolver.member_files)
+model_exponents_of_study = files(resolver.exponent_files)
 sweep_base_overrides = as_texts(resolver.sweep_base_overrides)
 member_overrides = as_texts(resolver.member_overrides, "case")
 fidelity_settings = resolved(resolver.fidelity_settings)
 exponent_links = resolved(resolver.exponent_links)
 synthetic_overrides = resolved(resolver.synthetic_overrides)
 synthetic_sets = as_sets(resolver.synthetic_overrides)
-
-
-def extreme_checks(wildcards):
-    return SETTINGS[wildcards.study].get("checks", {})
-
-
-def crank_rpm(wildcards):
-    return case_overrides(wildcards)["drive.speed_rpm"]
+extreme_checks = resolved(resolver.extreme_checks)
+crank_rpm = resolved(resolver.crank_rpm, "case")
+ideal_reference_of_case = files(resolver.ideal_reference, "case")
+sweep_parameter = resolved(resolver.sweep_parameter)
+batch_points = resolved(resolver.sweep_batch, "batch")
+batch_dirs_of_study = files(resolver.batch_files)
+fidelity_analyses = files_of_cases("analysis", resolver.fidelity_long_cases)
+crosscheck_exudyn = resolved(resolver.exudyn_settings, "case")
 
 
 def bootstrap_settings(wildcards=None):
     return config["statistics"]
 
 
-# ---------------------------------------------------------------- runs and ensemble members
-def member_file(name, case, member):
-    """Run of ensemble member `member` of a case: member 0 is the nominal run."""
-    if int(member) == 0:
-        return path("run", study=name, case=case)
-    return path("member", study=name, case=case, member=member)
-
-
-def members_of_study(wildcards):
-    name = wildcards.study
-    k_all = range(ensemble_size(name))
-    return [member_file(name, case, k) for case in case_names(name) for k in k_all]
-
-
-def ideal_reference_of_case(wildcards):
-    """The ideal run a tolerant case is compared with: only for the study's
-    `ideal_reference` case (clearance 0 must reproduce the ideal joint)."""
-    if SETTINGS[wildcards.study].get("ideal_reference") == wildcards.case:
-        return [path("ideal", study=wildcards.study, case=wildcards.case)]
-    return []
-
-
-# ---------------------------------------------------------------- sweeps, fidelity, exponents
-def sweep_parameter(wildcards):
-    return ",".join(SETTINGS[wildcards.study]["sweep"]["keys"])
-
-
-def batch_dirs_of_study(wildcards):
-    count = len(resolver.sweep_batches(SETTINGS[wildcards.study]))
-    return [path("sweep_batch", study=wildcards.study, batch=k) for k in range(count)]
-
-
-def batch_points(wildcards):
-    return resolver.sweep_batches(SETTINGS[wildcards.study])[int(wildcards.batch)]
-
-
-def fidelity_analyses(wildcards):
-    cases = resolver.fidelity_long_cases(SETTINGS[wildcards.study])
-    return paths_of_study("analysis", wildcards.study, cases)
-
-
 def model_exponent_run(wildcards):
-    return member_file(wildcards.study, wildcards.case, wildcards.member)
-
-
-def model_exponents_of_study(wildcards):
-    """Every member's exponent file, case by case, then link model by link model."""
-    name = wildcards.study
-    return [
-        path("model_exponent", study=name, case=case, links=links, member=k)
-        for case in case_names(name)
-        for links in exponent_links(wildcards)
-        for k in range(ensemble_size(name))
-    ]
+    """The member's run, whose exponent model_exponent takes."""
+    file, more = resolver.member_file(wildcards.case, wildcards.member)
+    return path(file, study=wildcards.study, **more)
 
 
 # ---------------------------------------------------------------- cross-check and experiment
-def crosscheck_exudyn(wildcards):
-    return SETTINGS[wildcards.study]["crosscheck"]["exudyn"].get(wildcards.case, {})
-
-
 def crosscheck_metrics(wildcards):
     """Metrics of every case of a cross-check study; none when Exudyn is not importable."""
-    if not EXUDYN:
-        return []
-    return paths_of_study("crosscheck_metrics", wildcards.study, case_names(wildcards.study))
+    return files_of_cases("crosscheck_metrics")(wildcards) if EXUDYN else []
 
 
 def recording_file(wildcards):
@@ -190,7 +138,7 @@ def recording_meta(wildcards):
 
 
 def sensor_option(wildcards):
-    sensor = SETTINGS[wildcards.study]["experiment"]["synthetic"].get("sensor")
+    sensor = resolver.synthetic_sensor(SETTINGS[wildcards.study])
     return f"--sensor {shlex.quote(sensor)}" if sensor else ""
 
 
@@ -237,29 +185,16 @@ def landing_recording(wildcards):
 
 
 # ---------------------------------------------------------------- compiled kernels
-def kernels(method):
-    """The marker of rule compile_kernels for integrator `method`. Its age does not count
-    (`ancient`): it only makes that integrator's kernels compile once, before its first run."""
-    return ancient(path("kernels", method=method))
+def kernels_of(function, *names):
+    """An adapter giving the marker of rule compile_kernels for the integrator that resolver
+    `function` (as `resolved`) names. The marker's age does not count (`ancient`): it only
+    makes that integrator's kernels compile once, before its first run."""
+    method = resolved(function, *names)
+    return lambda wildcards: ancient(path("kernels", method=method(wildcards)))
 
 
-def case_kernels(wildcards):
-    return kernels(resolver.case_method(SETTINGS[wildcards.study], wildcards.case))
-
-
-def ideal_kernels(wildcards):
-    """An ideal reference runs the scene's own integrator (resolver.IDEAL_IGNORED)."""
-    return kernels(resolver.scene_method(SETTINGS[wildcards.study]["scene"]))
-
-
-def sweep_kernels(wildcards):
-    return kernels(resolver.sweep_method(SETTINGS[wildcards.study]))
-
-
-def synthetic_kernels(wildcards):
-    return kernels(resolver.run_method(SETTINGS[wildcards.study], synthetic_overrides(wildcards)))
-
-
-def model_exponent_kernels(wildcards):
-    links = wildcards.links
-    return kernels(resolver.exponent_method(SETTINGS[wildcards.study], wildcards.case, links))
+case_kernels = kernels_of(resolver.case_method, "case")
+ideal_kernels = kernels_of(resolver.ideal_method)
+sweep_kernels = kernels_of(resolver.sweep_method)
+synthetic_kernels = kernels_of(resolver.synthetic_method)
+model_exponent_kernels = kernels_of(resolver.exponent_method, "case", "links")
