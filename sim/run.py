@@ -30,9 +30,9 @@ from sim.solve import lockstep, stepping
 from sim.solve.control import ERR_OLD_MIN
 from sim.solve.dae import Work, make_work, state_size
 from sim.solve.means import make_means
-from sim.solve.methods import Dopri5, method_of
+from sim.solve.methods import Dopri5, make_carry, method_of
 from sim.solve.record import peak_slots, peak_width, record_row, row_columns, row_width
-from sim.solve.state import CLOCK, TALLY, Buffers, Carry, Options, Trajectory, make_carry
+from sim.solve.state import CLOCK, TALLY, Buffers, Options, Trajectory
 from sim.solve.status import (
     MAX_STEPS,
     NONFINITE,
@@ -72,7 +72,7 @@ class Snapshot:
     Newton factors it holds (they only speed Newton up)."""
 
     trajectory: Trajectory
-    carry: Carry | None
+    carry: tuple | None  # the method's Carry (sim.solve.methods.make_carry)
 
 
 def _copied(structure):
@@ -87,7 +87,7 @@ class Integration:
     system: System
     layout: Layout
     work: Work
-    carry: Carry
+    carry: tuple  # the method's Carry (sim.solve.methods.make_carry)
     trajectory: Trajectory
     options: Options
     buffers: Buffers
@@ -284,7 +284,7 @@ def prepare(
         system=system,
         layout=layout,
         work=work,
-        carry=make_carry(system.n, system.m),
+        carry=make_carry(options.method, system.n, system.m),
         trajectory=Trajectory(y=y, mem=mem, clock=clock),
         options=options,
         buffers=buffers,

@@ -53,7 +53,8 @@ SC_DRIVE_TORQUE, SC_DISSIPATED_POWER, SC_CONTACT_ENERGY, SC_STRAIN_ENERGY = rang
 
 class Work(NamedTuple):
     """Scratch arrays owned by one simulation; the compiled loop allocates nothing. Nothing
-    here outlives a step: what one step hands to the next is `sim.solve.state.Carry`."""
+    here outlives a step: what one step hands to the next, and an integration method's own
+    scratch, is the method's carry (`sim.solve.methods.make_carry`)."""
 
     phi: np.ndarray  # (m,) constraint values
     jac: np.ndarray  # (m, n) Φ_q
@@ -68,7 +69,6 @@ class Work(NamedTuple):
     jout: np.ndarray  # (joints, N_JOINT_OUT) per clearance joint outputs
     scalars: np.ndarray  # (4,) see SC_*
     scratch: np.ndarray  # (n,) scratch: beam forces, momenta
-    stages: np.ndarray  # (5, ny) DOPRI5's stages k2…k6 (k1 is Carry.derivative)
     ydot_end: np.ndarray  # (ny,) ẏ at the step's end (DOPRI5's k7, FSAL)
     ytmp: np.ndarray  # (ny,)
     ynew: np.ndarray  # (ny,)
@@ -78,17 +78,14 @@ class Work(NamedTuple):
     jac_cols: np.ndarray  # (m, k) the columns where each row of Φ_q can be nonzero
     jac_ncols: np.ndarray  # (m,) how many
     col_block: np.ndarray  # (n,) the mass block of each coordinate
-    # The implicit method (sim.solve.galpha, sim.solve.tangent):
-    it_rhs: np.ndarray  # (n + m,) Newton right-hand side, then the correction
-    ga_acc_new: np.ndarray  # (n,) pseudo-acceleration a_{n+1} at the step's end
-    ga_xdd_new: np.ndarray  # (n,) the method's own q̈_{n+1}
-    ga_lam_new: np.ndarray  # (m,) multipliers λ_{n+1}
+    # The implicit method's iteration matrix (sim.solve.tangent):
     beam_kq: np.ndarray  # (s, s) one beam's stiffness Jacobian, s its largest size
     beam_kv: np.ndarray  # (s, s) one beam's damping Jacobian
     fd_base: np.ndarray  # (n,) contact forces at the unperturbed state
     fd_gen: np.ndarray  # (n,) contact forces at a perturbed state, or evaluated aside
     fd_jout: np.ndarray  # (joints, N_JOINT_OUT) their discarded outputs
     contact_coords: np.ndarray  # coordinates the clearance contact forces depend on
+    # The sparsity of the Schur complement Φ_q M⁻¹ Φ_qᵀ (factor_schur):
     schur_pairs: np.ndarray  # (p, 2) rows (i, j ≤ i) of Φ_q that share a mass block
     schur_first: np.ndarray  # (m,) first column where row i of S (and of its factor) can be nonzero
     coord_rows: np.ndarray  # (n, k) the rows of Φ_q that touch each coordinate's mass block
@@ -192,7 +189,6 @@ def make_work(system: System) -> Work:
         jout=np.zeros((n_clearance_joints(system), N_JOINT_OUT)),
         scalars=np.zeros(4),
         scratch=np.zeros(n),
-        stages=np.zeros((5, ny)),
         ydot_end=np.zeros(ny),
         ytmp=np.zeros(ny),
         ynew=np.zeros(ny),
@@ -202,10 +198,6 @@ def make_work(system: System) -> Work:
         jac_cols=jac_cols,
         jac_ncols=jac_ncols,
         col_block=col_block,
-        it_rhs=np.zeros(n + m),
-        ga_acc_new=np.zeros(n),
-        ga_xdd_new=np.zeros(n),
-        ga_lam_new=np.zeros(m),
         beam_kq=np.zeros((beam_size, beam_size)),
         beam_kv=np.zeros((beam_size, beam_size)),
         fd_base=np.zeros(n),

@@ -7,6 +7,8 @@ and the code DOPRI5). The loop around it (events, sampling, step control) is
 `sim.solve.stepping`. Compiled with numba; nothing here allocates.
 """
 
+from typing import NamedTuple
+
 import numpy as np
 
 from sim.jit import kernel
@@ -41,14 +43,15 @@ step is left over."""
 
 
 @kernel
-def _stages(sys, work, mem, t: float, h: float, y: np.ndarray, k1: np.ndarray) -> int:
-    """Stages k2…k7 from k1; the new state into work.ynew, k7 = its derivative into
-    work.ydot_end."""
-    k2 = work.stages[0]
-    k3 = work.stages[1]
-    k4 = work.stages[2]
-    k5 = work.stages[3]
-    k6 = work.stages[4]
+def _stages(sys, work, carry, mem, t: float, h: float, y: np.ndarray) -> int:
+    """Stages k2…k6 from k1 = carry.derivative into carry.stages; the new state into
+    work.ynew, k7 = its derivative into work.ydot_end."""
+    k1 = carry.derivative
+    k2 = carry.stages[0]
+    k3 = carry.stages[1]
+    k4 = carry.stages[2]
+    k5 = carry.stages[3]
+    k6 = carry.stages[4]
     k7 = work.ydot_end
     yt = work.ytmp
     yn = work.ynew
@@ -84,10 +87,11 @@ def _stages(sys, work, mem, t: float, h: float, y: np.ndarray, k1: np.ndarray) -
 
 
 @kernel
-def _error_norm(work, y: np.ndarray, k1, h: float, n2: int, rtol: float, atol: float) -> float:
+def _error_norm(work, carry, y: np.ndarray, h: float, n2: int, rtol: float, atol: float) -> float:
     """RMS of the embedded error estimate over q and q̇, scaled by atol + rtol·|y|.
     The energy quadratures are left out: they follow the motion's accuracy."""
-    k3, k4, k5, k6 = work.stages[1], work.stages[2], work.stages[3], work.stages[4]
+    k1 = carry.derivative
+    k3, k4, k5, k6 = carry.stages[1], carry.stages[2], carry.stages[3], carry.stages[4]
     k7 = work.ydot_end
     yn = work.ynew
     total = 0.0
@@ -99,11 +103,12 @@ def _error_norm(work, y: np.ndarray, k1, h: float, n2: int, rtol: float, atol: f
 
 
 @kernel
-def _dense_coefficients(work, y: np.ndarray, k1: np.ndarray, h: float) -> None:
+def _dense_coefficients(work, carry, y: np.ndarray, h: float) -> None:
     """Coefficients of the continuous extension over the step just computed: the
     Hermite part and DOPRI5's fourth-order term d4."""
+    k1 = carry.derivative
     hermite_coefficients(work, y, k1, h)
-    k3, k4, k5, k6 = work.stages[1], work.stages[2], work.stages[3], work.stages[4]
+    k3, k4, k5, k6 = carry.stages[1], carry.stages[2], carry.stages[3], carry.stages[4]
     k7 = work.ydot_end
     d = work.dense
     for i in range(y.shape[0]):
@@ -133,6 +138,19 @@ def sample(sys, work, mem, t0: float, h: float, time: float, row: np.ndarray) ->
     return record_row(sys, work, mem, time, work.yint, row)
 
 
+class Carry(NamedTuple):
+    """What a step hands to the next besides the trajectory (valid while clock.started),
+    and the method's own scratch."""
+
+    derivative: np.ndarray  # (2n + 2,) ẏ at (t, y): the first stage k1 (FSAL)
+    stages: np.ndarray  # (5, 2n + 2) scratch: the step's stages k2…k6
+
+
+def make_carry(n: int, m: int) -> Carry:
+    """The carry of a system of n coordinates and m constraints."""
+    return Carry(derivative=np.zeros(2 * n + 2), stages=np.zeros((5, 2 * n + 2)))
+
+
 @kernel
 def start(sys, work, carry) -> None:
     """Nothing to prepare: a step starts from y and Carry.derivative alone."""
@@ -144,8 +162,7 @@ def step(sys, work, carry, mem, t: float, h: float, y: np.ndarray, options, tall
     its derivative into work.ydot_end, the dense output into work.dense; its six
     evaluations counted in tally. Returns (status, error estimate scaled to the tolerance)."""
     tally.evaluations += 6
-    k1 = carry.derivative
-    s = _stages(sys, work, mem, t, h, y, k1)
+    s = _stages(sys, work, carry, mem, t, h, y)
     if s != OK:
         return s, np.inf
     # a tree mechanism's absolute coordinates follow its angles, so that the events and the
@@ -153,8 +170,8 @@ def step(sys, work, carry, mem, t: float, h: float, y: np.ndarray, options, tall
     # only, and its evaluation, the last, rebuilt them at the step's end: the projection onto
     # the tree without a second rebuild)
     adopt_tree_state(sys, work, work.ynew)
-    _dense_coefficients(work, y, k1, h)
-    return OK, _error_norm(work, y, k1, h, 2 * sys.n, options.rtol, options.atol)
+    _dense_coefficients(work, carry, y, h)
+    return OK, _error_norm(work, carry, y, h, 2 * sys.n, options.rtol, options.atol)
 
 
 @kernel

@@ -40,6 +40,8 @@ The drive work is integrated by the trapezoidal rule, the dissipated energy by
 Simpson's, whose difference from the trapezoid is a third error estimate.
 """
 
+from typing import NamedTuple
+
 import numpy as np
 
 from sim.jit import kernel
@@ -102,6 +104,42 @@ GRAZE_PROBES = (0.25, 0.5, 0.75)
 """Fractions of a step at which the continuous extension is probed for a graze."""
 
 
+class Carry(NamedTuple):
+    """What a step hands to the next besides the trajectory: the start data, valid while
+    clock.started, and the Newton factors, kept while it_fresh; and the method's own
+    scratch: the step's end values (made the start data by `accept`) and Newton's
+    right-hand side."""
+
+    derivative: np.ndarray  # (2n + 2,) ẏ at (t, y): k0 of the energy quadratures
+    acc: np.ndarray  # (n,) pseudo-acceleration a_n
+    xdd: np.ndarray  # (n,) the method's own q̈_n
+    lam: np.ndarray  # (m,) multipliers λ_n
+    it_mat: np.ndarray  # (n + m, n + m) Newton iteration matrix, then its LU factors
+    it_piv: np.ndarray  # (n + m,) their pivots
+    it_fresh: np.ndarray  # (1,) 1 while the factors are usable, else 0
+    acc_new: np.ndarray  # (n,) scratch: a_{n+1} at the step's end
+    xdd_new: np.ndarray  # (n,) scratch: the method's own q̈_{n+1}
+    lam_new: np.ndarray  # (m,) scratch: λ_{n+1}
+    newton_rhs: np.ndarray  # (n + m,) scratch: Newton's right-hand side, then the correction
+
+
+def make_carry(n: int, m: int) -> Carry:
+    """The carry of a system of n coordinates and m constraints, its factors not yet formed."""
+    return Carry(
+        derivative=np.zeros(2 * n + 2),
+        acc=np.zeros(n),
+        xdd=np.zeros(n),
+        lam=np.zeros(m),
+        it_mat=np.zeros((n + m, n + m)),
+        it_piv=np.zeros(n + m, dtype=np.int64),
+        it_fresh=np.zeros(1),
+        acc_new=np.zeros(n),
+        xdd_new=np.zeros(n),
+        lam_new=np.zeros(m),
+        newton_rhs=np.zeros(n + m),
+    )
+
+
 @kernel
 def coefficients(rho_inf: float) -> tuple[float, float, float, float]:
     """(α_m, α_f, β, γ) of Chung & Hulbert for the spectral radius ρ∞."""
@@ -128,10 +166,10 @@ def start(sys, work, carry) -> None:
 def accept(sys, work, carry) -> None:
     """Make the step just computed the start of the next: a_n, q̈_n, λ_n."""
     for i in range(carry.acc.shape[0]):
-        carry.acc[i] = work.ga_acc_new[i]
-        carry.xdd[i] = work.ga_xdd_new[i]
+        carry.acc[i] = carry.acc_new[i]
+        carry.xdd[i] = carry.xdd_new[i]
     for r in range(carry.lam.shape[0]):
-        carry.lam[r] = work.ga_lam_new[r]
+        carry.lam[r] = carry.lam_new[r]
 
 
 @kernel
@@ -185,8 +223,8 @@ def _scaled_rms(x: np.ndarray, ref0: np.ndarray, ref1: np.ndarray, rtol: float, 
 
 
 @kernel
-def _residual(sys, work, mem, t, q, v, xdd, lam, bh2, rtol, atol) -> float:
-    """The scaled Newton right-hand side into work.it_rhs, −β h² r and −Φ, with
+def _residual(sys, work, carry, mem, t, q, v, xdd, lam, bh2, rtol, atol) -> float:
+    """The scaled Newton right-hand side into carry.newton_rhs, −β h² r and −Φ, with
     r = M q̈ + Φ_qᵀ λ − Q, from a fresh evaluation at (t, q, v); returns the size
     of the residual against the tolerance: force rows against rtol times the
     size of the terms they balance (a floor of 1e-3 of the largest keeps rows
@@ -194,7 +232,7 @@ def _residual(sys, work, mem, t, q, v, xdd, lam, bh2, rtol, atol) -> float:
     floor too), constraint rows against atol."""
     n = sys.n
     m = sys.m
-    x = work.it_rhs
+    x = carry.newton_rhs
     generalized_forces(sys, work, t, q, v, mem, no_rotations(work))
     constraint_terms(sys, t, q, v, work.phi, work.jac, work.gamma, work.nu)
     block_times(sys, sys.mass, xdd, work.scratch)
@@ -236,9 +274,9 @@ def _newton(sys, work, carry, mem, t, h, y, rtol, atol, rho_inf, factor: bool):
     am, af, beta, gamma = coefficients(rho_inf)
     q = work.ynew[:n]
     v = work.ynew[n : 2 * n]
-    xdd = work.ga_xdd_new
+    xdd = carry.xdd_new
     x_old = carry.xdd
-    lam = work.ga_lam_new
+    lam = carry.lam_new
     # Predictor: the acceleration carried over.
     for i in range(n):
         a_old = carry.acc[i]
@@ -252,13 +290,13 @@ def _newton(sys, work, carry, mem, t, h, y, rtol, atol, rho_inf, factor: bool):
     bh2 = beta * h * h
     v_per_q = gamma / (beta * h)
     a_per_q = (1.0 - am) / (bh2 * (1.0 - af))
-    x = work.it_rhs
+    x = carry.newton_rhs
     matrices = 0
     previous = np.inf
     largest = np.inf
     roundoff = False
     for it in range(MAX_NEWTON + 1):
-        size = _residual(sys, work, mem, tn, q, v, xdd, lam, bh2, rtol, atol)
+        size = _residual(sys, work, carry, mem, tn, q, v, xdd, lam, bh2, rtol, atol)
         if size <= NEWTON_TOL or roundoff:
             return OK, True, it + 1, matrices, it
         if it == MAX_NEWTON or not np.isfinite(size):
@@ -349,7 +387,7 @@ def _step(sys, work, carry, mem, t: float, h: float, y: np.ndarray, rtol, atol, 
     am, af, beta, _ = coefficients(rho_inf)
     for i in range(n):
         a_old = carry.acc[i]
-        work.ga_acc_new[i] = ((1.0 - af) * work.ga_xdd_new[i] + af * carry.xdd[i] - am * a_old) / (
+        carry.acc_new[i] = ((1.0 - af) * carry.xdd_new[i] + af * carry.xdd[i] - am * a_old) / (
             1.0 - am
         )
     # What is reported and carried on (accelerations, drive torque, powers, the

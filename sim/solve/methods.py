@@ -1,7 +1,8 @@
 """The integration methods (solver.method) behind one kernel interface.
 
-Each method module (`sim.solve.dopri`, `sim.solve.galpha`) implements the same kernels, with
-the same signatures:
+Each method module (`sim.solve.dopri`, `sim.solve.galpha`) owns its carry, the data one step
+hands to the next (a NamedTuple `Carry` of arrays with at least `derivative`, ẏ at the step's
+start, made by `make_carry(n, m)`), and implements the same kernels, with the same signatures:
 
 - `start(sys, work, carry)`: prepare the step data from the evaluation at (t, y) just made
   (ẏ in carry.derivative; λ in work.rhs);
@@ -59,6 +60,11 @@ _JIT = {"_nrt": False}  # as sim.jit.kernel
 def implementation(method: Dopri5 | GeneralizedAlpha) -> ModuleType:
     """The module that implements Options.method (sim.solve.dopri or sim.solve.galpha)."""
     return _MODULES[type(method)]
+
+
+def make_carry(method: Dopri5 | GeneralizedAlpha, n: int, m: int) -> tuple:
+    """The carry of Options.method for n coordinates and m constraints."""
+    return implementation(method).make_carry(n, m)
 
 
 def _module(options):

@@ -3,9 +3,10 @@
 - `Options`: the run's solver settings (immutable).
 - `Trajectory`: what the future of a run depends on: the state y, the contact memory and the
   step controller's `CLOCK` record. A copy of it is a restart point (`sim.run.Snapshot`).
-- `Carry`: what one step hands to the next besides the trajectory and can be recomputed from
-  it (the derivative at the step's start, the generalized-α start data) or kept as an
-  economy (the Newton factors); `sim.solve.dae.Work` is pure scratch.
+- the carry, each method's own (`sim.solve.dopri.Carry`, `sim.solve.galpha.Carry`, made by
+  `sim.solve.methods.make_carry`): what one step hands to the next besides the trajectory
+  and can be recomputed from it (the derivative at the step's start, the generalized-α start
+  data) or kept as an economy (the Newton factors); `sim.solve.dae.Work` is pure scratch.
 - `Buffers`: the requested output times and the rows, sections and peaks recorded, and the
   log of accepted step ends a lockstep follower takes (`sim.solve.lockstep`).
 - `TALLY`: counters of the run and the details of a failure.
@@ -24,7 +25,9 @@ CLOCK = np.dtype(
     [
         ("t", np.float64),  # s, time reached
         ("h", np.float64),  # s, step size the controller proposes next
-        ("facold", np.float64),  # previous accepted step's error (DOPRI5's PI control)
+        # the previous accepted step's error: the step controller's memory, part of a restart
+        # point; the method's step_factor reads it (DOPRI5's PI control does)
+        ("facold", np.float64),
         ("started", np.bool_),  # Carry holds the start data of the step from (t, y)
     ]
 )
@@ -69,18 +72,6 @@ class Trajectory(NamedTuple):
     clock: np.ndarray  # (1,) CLOCK
 
 
-class Carry(NamedTuple):
-    """Data carried from one step to the next (valid while clock.started)."""
-
-    derivative: np.ndarray  # (ny,) ẏ at (t, y): DOPRI5's first stage (FSAL), both methods' k0
-    acc: np.ndarray  # (n,) generalized-α pseudo-acceleration a_n
-    xdd: np.ndarray  # (n,) generalized-α's own q̈_n
-    lam: np.ndarray  # (m,) generalized-α's multipliers λ_n
-    it_mat: np.ndarray  # (n + m, n + m) Newton iteration matrix, then its LU factors
-    it_piv: np.ndarray  # (n + m,) their pivots
-    it_fresh: np.ndarray  # (1,) 1 while the factors are usable, else 0
-
-
 class Buffers(NamedTuple):
     """Output times and what the loop records (rows in sim.solve.record's layout)."""
 
@@ -96,19 +87,6 @@ class Buffers(NamedTuple):
     # (capacity,) s, the end of every accepted step since tally.logged was last zeroed, for a
     # trajectory that follows this one (sim.solve.lockstep); empty: nothing is logged
     step_ends: np.ndarray
-
-
-def make_carry(n: int, m: int) -> Carry:
-    """Carried step data for n coordinates and m constraints (state size 2n + 2)."""
-    return Carry(
-        derivative=np.zeros(2 * n + 2),
-        acc=np.zeros(n),
-        xdd=np.zeros(n),
-        lam=np.zeros(m),
-        it_mat=np.zeros((n + m, n + m)),
-        it_piv=np.zeros(n + m, dtype=np.int64),
-        it_fresh=np.zeros(1),
-    )
 
 
 @kernel

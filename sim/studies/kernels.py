@@ -30,8 +30,8 @@ from sim.run import prepare, simulate, solver_options
 from sim.scene import load_scene
 from sim.solve import lockstep
 from sim.solve.dae import make_work, state_size
-from sim.solve.methods import implementation
-from sim.solve.state import TALLY, make_carry
+from sim.solve.methods import implementation, make_carry
+from sim.solve.state import TALLY
 
 #: the run that compiles a method's kernels: the six-bar with clearance in A and B and
 #: two-element beams, long enough for its first contact events
@@ -59,7 +59,7 @@ def compile_step(scene: dict) -> None:
     arguments = (
         system,
         make_work(system),
-        make_carry(system.n, system.m),
+        make_carry(options.method, system.n, system.m),
         contact_memory(system),
         0.0,
         0.0,

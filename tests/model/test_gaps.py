@@ -27,6 +27,10 @@ class Joints(NamedTuple):
 
 # three revolute and two translational clearances
 SYSTEM = Joints(rj_pts=np.zeros((3, 2), dtype=np.int64), tj_off=np.zeros(2, dtype=np.int64))
+# The kernels run as Python: compiled for a type of this module, they would enter numba's
+# on-disk index, which a process without the tests on its path then cannot read.
+gap_owner = gap_owner.py_func
+slider_gap = slider_gap.py_func
 
 
 def test_every_gap_has_one_owner_and_every_owner_one_gap():
