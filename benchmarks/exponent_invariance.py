@@ -4,12 +4,16 @@ docs/exponent.md.
 For one operating point of the six-bar and one link model, the largest Lyapunov exponent
 (`sim.studies.model_lyapunov.linkage_lyapunov`) at each setting given as RTOL:INTERVAL:D0
 (atol = rtol / 100; the interval in crank revolutions, as a fraction; d0 in m), one JSON line
-each with its standard error and the CPU seconds it took. The exponent belongs to the dynamics
-when no setting moves it beyond its standard error.
+each with its standard error, the CPU seconds it took, and how the separation grew interval by
+interval (`stretch`: quantiles of ln(d / d0) per renormalisation interval and the share of
+their total that the top 5 % of intervals carry). The exponent belongs to the dynamics when no
+setting moves it beyond its standard error.
 
 Points: `flagship` (A and B 0.5 mm, 150 rpm), `slow` (0.2 mm, 30 rpm), `small` (0.1 mm,
 150 rpm). Links: `rigid`, `modal-B-A` (B bending and A axial modes per rod; generalized-alpha
-when A > 0, as the axial modes need it), `beam-E` (E ANCF elements per rod, generalized-alpha).
+when A > 0, as the axial modes need it), `beam-E` (E ANCF elements per rod, generalized-alpha);
+`:ga` after any of them forces generalized-alpha (e.g. `modal-1-0:ga`, to tell the method's
+share of a difference from the link model's).
 
 Usage: python benchmarks/exponent_invariance.py POINT LINKS REVOLUTIONS TRANSIENT SETTING...
 e.g.   python benchmarks/exponent_invariance.py flagship modal-1-0 24 4 1e-6:1/32:1e-6
@@ -20,6 +24,9 @@ import sys
 import time
 from fractions import Fraction
 
+import numpy as np
+
+from sim.analysis.lyapunov import BenettinResult
 from sim.scene import load_scene
 from sim.studies.model_lyapunov import linkage_lyapunov
 
@@ -33,6 +40,8 @@ RODS = ("rod2", "rod3", "rod4")
 
 def link_overrides(links: str) -> list[str]:
     """The scene overrides of a link model named as in the module docstring."""
+    if links.endswith(":ga"):
+        return [*link_overrides(links.removesuffix(":ga")), "solver.method=generalized_alpha"]
     if links == "rigid":
         return []
     kind, *sizes = links.split("-")
@@ -53,6 +62,18 @@ def link_overrides(links: str) -> list[str]:
     raise SystemExit(f"unknown link model '{links}': rigid, modal-B-A or beam-E")
 
 
+def stretch(result: BenettinResult) -> dict:
+    """Quantiles of the recorded intervals' logarithmic stretch ln(d / d0) (the running
+    estimate times the recorded time, differenced) and the top 5 %'s share of their sum."""
+    recorded = result.time - (result.time[0] - result.interval)
+    per_interval = np.diff(result.running * recorded, prepend=0.0)
+    top = np.sort(per_interval)[::-1][: max(1, per_interval.size // 20)]
+    names = ("median", "q90", "q99", "max")
+    quantiles = np.quantile(per_interval, [0.5, 0.9, 0.99, 1.0])
+    out = {name: round(float(q), 2) for name, q in zip(names, quantiles, strict=True)}
+    return out | {"top5pct_share": round(float(top.sum() / per_interval.sum()), 3)}
+
+
 def main() -> None:
     point, links, revolutions, transient, *settings = sys.argv[1:]
     scene = load_scene("sixbar", POINTS[point] + link_overrides(links))
@@ -66,7 +87,7 @@ def main() -> None:
             d0=float(d0),
             interval_revolutions=float(Fraction(interval)),
             tolerances=(float(rtol), float(rtol) / 100),
-            rigid=links == "rigid",
+            rigid=links.startswith("rigid"),
         )
         row = {
             "point": point,
@@ -79,6 +100,7 @@ def main() -> None:
             "exponent_per_s": round(result.exponent, 1),
             "stderr_per_s": round(result.stderr, 1),
             "cpu_s": round(time.process_time() - cpu, 1),
+            "stretch": stretch(result),
         }
         print(json.dumps(row), flush=True)
 

@@ -96,7 +96,7 @@ def register(subparsers: argparse._SubParsersAction) -> argparse.ArgumentParser:
 def _model_lyapunov(run: xr.Dataset, transient: int) -> xr.Dataset:
     from sim.results import scene_of
     from sim.studies.model_lyapunov import (
-        DEFAULT_TOLERANCES,
+        default_tolerances,
         linkage_lyapunov,
         model_lyapunov_dataset,
         with_tolerances,
@@ -104,7 +104,8 @@ def _model_lyapunov(run: xr.Dataset, transient: int) -> xr.Dataset:
 
     if "scene" not in run.attrs:
         raise ValueError("missing global attribute 'scene' (the run's resolved scene as JSON)")
-    scene = with_tolerances(scene_of(run), DEFAULT_TOLERANCES)
+    scene = scene_of(run)
+    scene = with_tolerances(scene, default_tolerances(scene))
     result = linkage_lyapunov(
         scene,
         revolutions=scene["simulation"]["revolutions"],

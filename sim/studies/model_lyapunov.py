@@ -26,9 +26,10 @@ DEFAULT_D0 = 1e-6
 DEFAULT_INTERVAL_REVOLUTIONS = 1 / 32
 #: default revolutions of :func:`run_with_exponent`'s perturbed trajectory before recording
 DEFAULT_ALIGNMENT_REVOLUTIONS = 2.0
-#: default integration tolerances (rtol, atol) of both trajectories, unless the scene's are
-#: tighter: the tightest whose exponent a tighter one does not move (see :func:`linkage_lyapunov`)
-DEFAULT_TOLERANCES = (1e-6, 1e-8)
+#: default integration tolerances (rtol, atol) of both trajectories per integrator, unless the
+#: scene's are tighter: the loosest whose exponent a tighter one does not move
+#: (see :func:`linkage_lyapunov`)
+DEFAULT_TOLERANCES = {"dopri5": (1e-6, 1e-8), "generalized_alpha": (1e-8, 1e-10)}
 #: the fields of the integration's clock (sim.solve.state.CLOCK) packed with a trajectory
 CONTROLLER = ("t", "h", "facold")
 #: the reference's log of step ends: room for the accepted steps of one renormalisation
@@ -179,6 +180,11 @@ def linkage_propagator(
     )
 
 
+def default_tolerances(scene: dict) -> tuple[float, float]:
+    """The exponent's default (rtol, atol) for the scene's integrator (DEFAULT_TOLERANCES)."""
+    return DEFAULT_TOLERANCES[scene["solver"]["method"]]
+
+
 def with_tolerances(scene: dict, tolerances: tuple[float, float]) -> dict:
     """A copy of ``scene`` whose solver rtol and atol are at most ``tolerances``."""
     rtol, atol = tolerances
@@ -207,7 +213,7 @@ def linkage_lyapunov(
     transient_revolutions: float,
     d0: float = DEFAULT_D0,
     interval_revolutions: float = DEFAULT_INTERVAL_REVOLUTIONS,
-    tolerances: tuple[float, float] = DEFAULT_TOLERANCES,
+    tolerances: tuple[float, float] | None = None,
     ideal: bool = False,
     rigid: bool = False,
 ) -> BenettinResult:
@@ -239,10 +245,14 @@ def linkage_lyapunov(
     Choosing the parameters:
         tolerances: the exponent of the discrete map approaches the flow's as the steps
             resolve the motion; on the flagship (A and B 0.5 mm, 150 rpm, d0 = 1e-6 m,
-            interval 1/32 revolution, 20 recorded revolutions) rtol 1e-6 and 1e-8 agree within
-            their standard errors (rigid links 57.3 ± 2.2 and 57.8 ± 5.2 1/s, modal links
-            270.7 ± 5.7 and 269.2 ± 6.2), while rtol 1e-5 reads 70 ± 6 and 295 ± 8. Hence the
-            default (1e-6, 1e-8), applied where the scene's own tolerances are looser.
+            interval 1/32 revolution, 20 recorded revolutions) under DOPRI5, rtol 1e-6 and 1e-8
+            agree within their standard errors (rigid links 57.3 ± 2.2 and 57.8 ± 5.2 1/s,
+            modal links 270.7 ± 5.7 and 269.2 ± 6.2), while rtol 1e-5 reads 70 ± 6 and 295 ± 8.
+            Generalized-α needs 1e-8: modal links read 310 ± 6 at rtol 1e-6 and 274 ± 4 at
+            1e-8 (DOPRI5's value), and with an axial mode 342 ± 4, 298 ± 5 and 295 ± 7 at 1e-6,
+            1e-8 and 1e-9, its 1e-6 value moving with the interval and d0 too (411 and 454).
+            Hence the defaults per integrator (DEFAULT_TOLERANCES: (1e-6, 1e-8) and (1e-8,
+            1e-10)), applied where the scene's own tolerances are looser.
         d0: inside the linear regime and above the integration noise. The noise floor scales
             with the tolerance, about rtol metres: at rtol 1e-6 the rigid flagship reads
             58.0 ± 2.8, 57.3 ± 2.2, 67.0 ± 2.6 and 87.2 ± 4.3 1/s for d0 = 1e-5 … 1e-8 m; at
@@ -283,7 +293,8 @@ def linkage_lyapunov(
         d0: separation after every renormalisation, in the metric of
             :class:`LinkagePropagator` (m).
         interval_revolutions: renormalisation interval in crank revolutions.
-        tolerances: upper bounds on the solver's (rtol, atol) for both trajectories.
+        tolerances: upper bounds on the solver's (rtol, atol) for both trajectories; None:
+            :func:`default_tolerances` of the scene.
         ideal, rigid: the reference mechanism, as for :func:`sim.run.simulate`.
 
     Returns:
@@ -296,7 +307,7 @@ def linkage_lyapunov(
         )
     if interval_revolutions <= 0:
         raise ValueError(f"interval_revolutions = {interval_revolutions} must be positive")
-    scene = with_tolerances(scene, tolerances)
+    scene = with_tolerances(scene, tolerances or default_tolerances(scene))
     propagator = linkage_propagator(scene, ideal=ideal, rigid=rigid)
     interval = interval_revolutions * crank_period(scene)
     distance = propagator.distance(scene)

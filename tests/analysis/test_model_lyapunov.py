@@ -9,12 +9,26 @@ from sim.model.gaps import MEM_COLUMNS, MEM_IN_CONTACT, MEM_ONSET_RATE
 from sim.run import simulate
 from sim.scene import load_scene
 from sim.studies.model_lyapunov import (
+    default_tolerances,
     linkage_lyapunov,
     linkage_propagator,
     run_with_exponent,
+    with_tolerances,
 )
 
 FLAGSHIP = ["joints.A.clearance=0.5e-3", "joints.B.clearance=0.5e-3"]
+
+
+def test_the_default_tolerances_follow_the_integrator_and_never_loosen_the_scene():
+    scene = load_scene("sixbar")
+    assert default_tolerances(scene) == (1e-6, 1e-8)
+    implicit = load_scene("sixbar", ["solver.method=generalized_alpha"])
+    assert default_tolerances(implicit) == (1e-8, 1e-10)
+    # a scene already tighter keeps its own
+    tight = with_tolerances(
+        load_scene("sixbar", ["solver.rtol=1e-9", "solver.atol=1e-11"]), (1e-6, 1e-8)
+    )
+    assert (tight["solver"]["rtol"], tight["solver"]["atol"]) == (1e-9, 1e-11)
 
 
 def test_ideal_sixbar_exponent_is_the_baumgarte_rate():

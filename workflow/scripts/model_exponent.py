@@ -12,7 +12,7 @@ from sim.results import open_run, scene_of, write_netcdf
 from sim.studies.config import REDUCED_LINKS_METHOD
 from sim.studies.model_lyapunov import (
     DEFAULT_INTERVAL_REVOLUTIONS,
-    DEFAULT_TOLERANCES,
+    default_tolerances,
     linkage_lyapunov,
     model_lyapunov_dataset,
     with_modal_links,
@@ -26,8 +26,7 @@ MEMBER_ATTRS = ("ensemble_member", "ensemble_seed", "perturbation", "perturbatio
 def main(sm) -> None:
     settings = sm.params.settings
     run = open_run(sm.input.run)
-    tolerances = tuple(settings.get("tolerances", DEFAULT_TOLERANCES))
-    scene = with_tolerances(scene_of(run), tolerances)
+    scene = scene_of(run)
     links = sm.wildcards.links
     # a run made rigid by `sim run --rigid` keeps its scene's flexible bodies: `run` follows it
     rigid = links == "rigid" or (links == "run" and bool(run.attrs.get("model_rigid", 0)))
@@ -35,6 +34,8 @@ def main(sm) -> None:
         scene = with_modal_links(scene)
     if rigid or links == "modal":
         scene["solver"]["method"] = REDUCED_LINKS_METHOD
+    tolerances = tuple(settings.get("tolerances") or default_tolerances(scene))
+    scene = with_tolerances(scene, tolerances)
     result = linkage_lyapunov(
         scene,
         revolutions=settings["revolutions"],
