@@ -247,7 +247,7 @@ MEMBER_LINKS = {
     "rigid": "rigid links",
     "modal": (
         "modal links of one bending mode each, which read about 10 % below four modes and "
-        "22 % below the ANCF beams on the flagship (docs/exponent.md)"
+        "18 % below the ANCF beams on the flagship (docs/exponent.md)"
     ),
 }
 
