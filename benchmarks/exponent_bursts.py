@@ -15,62 +15,61 @@ e.g.   python benchmarks/exponent_bursts.py slow 1/512 24 4
 
 import json
 import sys
+from dataclasses import dataclass, field
 from fractions import Fraction
 
 import numpy as np
-from exponent_invariance import POINTS
+from exponent_invariance import POINTS, interval_stretch
 
-from sim.analysis.lyapunov import benettin
-from sim.model.assembly import crank_period
-from sim.run import Integration
 from sim.scene import load_scene
-from sim.studies.model_lyapunov import linkage_propagator, with_tolerances
+from sim.studies import model_lyapunov
+from sim.studies.model_lyapunov import LinkagePropagator, linkage_lyapunov
 
 
-def events(integ: Integration) -> int:
-    """Contact events (flag flips) an integration has made so far."""
-    return int(integ.tally[0]["events"])
+@dataclass(frozen=True, eq=False)
+class CountingPropagator(LinkagePropagator):
+    """The propagator of `linkage_lyapunov`, counting each trajectory's contact events (flag
+    flips) per renormalisation interval."""
+
+    reference_events: list[int] = field(default_factory=list)
+    perturbed_events: list[int] = field(default_factory=list)
+
+    def advance_leader(self, state: np.ndarray, t: float, dt: float) -> np.ndarray:
+        before = self.leader.tally[0]["events"]
+        out = super().advance_leader(state, t, dt)
+        self.reference_events.append(int(self.leader.tally[0]["events"] - before))
+        return out
+
+    def advance(self, state: np.ndarray, t: float, dt: float) -> np.ndarray:
+        before = self.integration.tally[0]["events"]
+        out = super().advance(state, t, dt)
+        self.perturbed_events.append(int(self.integration.tally[0]["events"] - before))
+        return out
 
 
 def main() -> None:
     point, interval_text, revolutions, transient = sys.argv[1:]
-    scene = with_tolerances(load_scene("sixbar", POINTS[point]), (1e-6, 1e-8))
-    propagator = linkage_propagator(scene, rigid=True)
-    interval = float(Fraction(interval_text))
-    distance = propagator.distance(scene)
-    reference_events: list[int] = []
-    perturbed_events: list[int] = []
+    made: list[CountingPropagator] = []
+    plain = model_lyapunov.linkage_propagator
 
-    def advance_reference(state: np.ndarray, t: float, dt: float) -> np.ndarray:
-        before = events(propagator.leader)
-        out = propagator.advance_leader(state, t, dt)
-        reference_events.append(events(propagator.leader) - before)
-        return out
+    def counting(scene: dict, **options) -> CountingPropagator:
+        made.append(CountingPropagator(*vars(plain(scene, **options)).values()))
+        return made[-1]
 
-    def advance(state: np.ndarray, t: float, dt: float) -> np.ndarray:
-        before = events(propagator.integration)
-        out = propagator.advance(state, t, dt)
-        perturbed_events.append(events(propagator.integration) - before)
-        return out
-
-    result = benettin(
-        advance,
-        propagator.pack(),
-        0.0,
-        interval=interval * crank_period(scene),
-        n_intervals=round((float(revolutions) - float(transient)) / interval),
-        d0=1e-6,
-        distance=distance,
-        rescale=propagator.rescale(distance),
-        mask=propagator.mask(),
-        transient_intervals=round(float(transient) / interval),
-        advance_reference=advance_reference,
+    # linkage_lyapunov builds its propagator by this module-level name
+    model_lyapunov.linkage_propagator = counting
+    result = linkage_lyapunov(
+        load_scene("sixbar", POINTS[point]),
+        revolutions=float(revolutions),
+        transient_revolutions=float(transient),
+        interval_revolutions=float(Fraction(interval_text)),
+        tolerances=(1e-6, 1e-8),
+        rigid=True,
     )
-    recorded = result.time - (result.time[0] - result.interval)
-    stretch = np.diff(result.running * recorded, prepend=0.0)
+    stretch = interval_stretch(result)
     n = stretch.size
-    reference = np.array(reference_events[-n:])
-    perturbed = np.array(perturbed_events[-n:])
+    reference = np.array(made[0].reference_events[-n:])
+    perturbed = np.array(made[0].perturbed_events[-n:])
     eventful = (reference > 0) | (perturbed > 0)
     differing = reference != perturbed
     same = eventful & ~differing

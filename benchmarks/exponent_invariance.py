@@ -62,11 +62,17 @@ def link_overrides(links: str) -> list[str]:
     raise SystemExit(f"unknown link model '{links}': rigid, modal-B-A or beam-E")
 
 
-def stretch(result: BenettinResult) -> dict:
-    """Quantiles of the recorded intervals' logarithmic stretch ln(d / d0) (the running
-    estimate times the recorded time, differenced) and the top 5 %'s share of their sum."""
+def interval_stretch(result: BenettinResult) -> np.ndarray:
+    """The logarithmic stretch ln(d / d0) of every recorded interval: the running estimate
+    times the recorded time, differenced."""
     recorded = result.time - (result.time[0] - result.interval)
-    per_interval = np.diff(result.running * recorded, prepend=0.0)
+    return np.diff(result.running * recorded, prepend=0.0)
+
+
+def stretch(result: BenettinResult) -> dict:
+    """Quantiles of the recorded intervals' stretch (`interval_stretch`) and the top 5 %'s
+    share of their sum."""
+    per_interval = interval_stretch(result)
     top = np.sort(per_interval)[::-1][: max(1, per_interval.size // 20)]
     names = ("median", "q90", "q99", "max")
     quantiles = np.quantile(per_interval, [0.5, 0.9, 0.99, 1.0])
