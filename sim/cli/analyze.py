@@ -96,16 +96,14 @@ def register(subparsers: argparse._SubParsersAction) -> argparse.ArgumentParser:
 def _model_lyapunov(run: xr.Dataset, transient: int) -> xr.Dataset:
     from sim.results import scene_of
     from sim.studies.model_lyapunov import (
-        default_tolerances,
+        exponent_tolerances,
         linkage_lyapunov,
         model_lyapunov_dataset,
-        with_tolerances,
     )
 
     if "scene" not in run.attrs:
         raise ValueError("missing global attribute 'scene' (the run's resolved scene as JSON)")
     scene = scene_of(run)
-    scene = with_tolerances(scene, default_tolerances(scene))
     result = linkage_lyapunov(
         scene,
         revolutions=scene["simulation"]["revolutions"],
@@ -113,7 +111,7 @@ def _model_lyapunov(run: xr.Dataset, transient: int) -> xr.Dataset:
         ideal=bool(run.attrs.get("model_ideal", 0)),
         rigid=bool(run.attrs.get("model_rigid", 0)),
     )
-    return model_lyapunov_dataset(result, (scene["solver"]["rtol"], scene["solver"]["atol"]))
+    return model_lyapunov_dataset(result, exponent_tolerances(scene))
 
 
 def analyze_command(args: argparse.Namespace) -> int:

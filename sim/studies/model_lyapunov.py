@@ -185,6 +185,16 @@ def default_tolerances(scene: dict) -> tuple[float, float]:
     return DEFAULT_TOLERANCES[scene["solver"]["method"]]
 
 
+def exponent_tolerances(
+    scene: dict, tolerances: tuple[float, float] | None = None
+) -> tuple[float, float]:
+    """The (rtol, atol) both trajectories of :func:`linkage_lyapunov` take for ``scene`` given
+    its ``tolerances`` argument: the scene's own, bounded by ``tolerances`` or, when None, by
+    :func:`default_tolerances`."""
+    solver = with_tolerances(scene, tolerances or default_tolerances(scene))["solver"]
+    return solver["rtol"], solver["atol"]
+
+
 def with_tolerances(scene: dict, tolerances: tuple[float, float]) -> dict:
     """A copy of ``scene`` whose solver rtol and atol are at most ``tolerances``."""
     rtol, atol = tolerances
@@ -307,7 +317,7 @@ def linkage_lyapunov(
         )
     if interval_revolutions <= 0:
         raise ValueError(f"interval_revolutions = {interval_revolutions} must be positive")
-    scene = with_tolerances(scene, tolerances or default_tolerances(scene))
+    scene = with_tolerances(scene, exponent_tolerances(scene, tolerances))
     propagator = linkage_propagator(scene, ideal=ideal, rigid=rigid)
     interval = interval_revolutions * crank_period(scene)
     distance = propagator.distance(scene)

@@ -10,6 +10,7 @@ from sim.run import simulate
 from sim.scene import load_scene
 from sim.studies.model_lyapunov import (
     default_tolerances,
+    exponent_tolerances,
     linkage_lyapunov,
     linkage_propagator,
     run_with_exponent,
@@ -29,6 +30,11 @@ def test_the_default_tolerances_follow_the_integrator_and_never_loosen_the_scene
         load_scene("sixbar", ["solver.rtol=1e-9", "solver.atol=1e-11"]), (1e-6, 1e-8)
     )
     assert (tight["solver"]["rtol"], tight["solver"]["atol"]) == (1e-9, 1e-11)
+    # what the exponent's file records: the tolerances its trajectories took
+    assert exponent_tolerances(scene) == (1e-6, 1e-8)
+    assert exponent_tolerances(implicit) == (1e-8, 1e-10)
+    assert exponent_tolerances(scene, (1e-7, 1e-9)) == (1e-7, 1e-9)
+    assert exponent_tolerances(tight, (1e-6, 1e-8)) == (1e-9, 1e-11)
 
 
 def test_ideal_sixbar_exponent_is_the_baumgarte_rate():

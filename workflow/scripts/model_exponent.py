@@ -12,11 +12,10 @@ from sim.results import open_run, scene_of, write_netcdf
 from sim.studies.config import REDUCED_LINKS_METHOD
 from sim.studies.model_lyapunov import (
     DEFAULT_INTERVAL_REVOLUTIONS,
-    default_tolerances,
+    exponent_tolerances,
     linkage_lyapunov,
     model_lyapunov_dataset,
     with_modal_links,
-    with_tolerances,
 )
 
 #: the run file's attributes that name the member (sim.ensemble.Member.attrs)
@@ -34,8 +33,8 @@ def main(sm) -> None:
         scene = with_modal_links(scene)
     if rigid or links == "modal":
         scene["solver"]["method"] = REDUCED_LINKS_METHOD
-    tolerances = tuple(settings.get("tolerances") or default_tolerances(scene))
-    scene = with_tolerances(scene, tolerances)
+    tolerances = settings.get("tolerances")
+    rtol, atol = exponent_tolerances(scene, tolerances)
     result = linkage_lyapunov(
         scene,
         revolutions=settings["revolutions"],
@@ -45,7 +44,7 @@ def main(sm) -> None:
         ideal=bool(run.attrs.get("model_ideal", 0)),
         rigid=rigid,
     )
-    out = model_lyapunov_dataset(result, (scene["solver"]["rtol"], scene["solver"]["atol"]))
+    out = model_lyapunov_dataset(result, (rtol, atol))
     out.attrs.update({key: run.attrs[key] for key in MEMBER_ATTRS})
     out.attrs.update(
         {
@@ -62,7 +61,7 @@ def main(sm) -> None:
         log.write(
             f"member {run.attrs['ensemble_member']}: {result.exponent:.4g} ± "
             f"{result.stderr:.2g} 1/s over {settings['revolutions']} revolutions "
-            f"({settings['transient']} transient), rtol {scene['solver']['rtol']:g}\n"
+            f"({settings['transient']} transient), rtol {rtol:g}\n"
         )
 
 
