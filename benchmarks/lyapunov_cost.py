@@ -2,7 +2,7 @@
 
 On the flagship (rigid six-bar, A and B clearances 0.5 mm, 150 rpm), one process:
   - wall time of one run (`simulate`) at the scene's tolerances (rtol 1e-6) and at the
-    exponent's tolerances (sim.studies.model_lyapunov.default_tolerances);
+    exponent's tolerances (sim.studies.model_lyapunov.exponent_tolerances);
   - the exponent (Benettin, both trajectories on the run's compiled integrator) with its
     standard error, and its cost relative to both runs;
   - the same with d0 / 10 and with the renormalisation interval halved (the result must not
@@ -24,7 +24,7 @@ from sim.scene import load_scene
 from sim.studies.model_lyapunov import (
     DEFAULT_D0,
     DEFAULT_INTERVAL_REVOLUTIONS,
-    default_tolerances,
+    exponent_tolerances,
     linkage_lyapunov,
     with_tolerances,
 )
@@ -46,14 +46,15 @@ def main() -> None:
     parser.add_argument("--no-checks", action="store_true", help="skip the d0/interval checks")
     args = parser.parse_args()
     scene = load_scene("sixbar", [*CASE, f"simulation.revolutions={args.revolutions}"])
-    tight = with_tolerances(scene, default_tolerances(scene))
+    # the tolerances the exponent's trajectories take
+    rtol, atol = exponent_tolerances(scene)
+    tight = with_tolerances(scene, (rtol, atol))
     # compile (or load) every kernel outside the timings
     simulate(scene, revolutions=0.01)
     linkage_lyapunov(scene, revolutions=0.5, transient_revolutions=0.0, interval_revolutions=0.02)
 
     _, run_cpu, run_wall = timed(simulate, scene)
     _, tight_cpu, tight_wall = timed(simulate, tight)
-    rtol, atol = default_tolerances(scene)
     print(
         f"flagship, {args.revolutions:g} revolutions ({args.transient:g} transient); one run: "
         f"{run_cpu:.1f} s CPU ({run_wall:.1f} s wall) at rtol {scene['solver']['rtol']:g}, "
