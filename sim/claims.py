@@ -319,9 +319,38 @@ def _third_text(
     return share, lam, text
 
 
+def _listed(items: list[str], limit: int = 5) -> str:
+    """The first ``limit`` items joined by commas, an ellipsis for the rest."""
+    return ", ".join(items[:limit]) + (", …" if len(items) > limit else "")
+
+
+def _onset_text(table: pd.DataFrame, parameter: str, values: np.ndarray) -> str:
+    """Where chaos starts along a sweep: the lowest point with a channel judged chaotic, how
+    many points from there on have one, and the stretches of consecutive points without one
+    (periodic windows, or points no indicator decides)."""
+    verdicts = table.groupby(parameter).verdict
+    chaotic = verdicts.apply(lambda v: bool((v == "chaotic").any())).reindex(values).to_numpy()
+    if not chaotic.any():
+        return "no point has a chaotic channel"
+    start = int(np.argmax(chaotic))
+    after, rest = chaotic[start:], values[start:]
+    # a window opens where a chaotic point is followed by a regular one and closes before
+    # the next chaotic one (or at the sweep's end)
+    edges = np.flatnonzero(np.diff(np.r_[True, after, True].astype(int)))
+    windows = [
+        f"{rest[a]:g}" if b - a == 1 else f"{rest[a]:g}–{rest[b - 1]:g}"
+        for a, b in zip(edges[::2], edges[1::2], strict=True)
+    ]
+    onset = (
+        f"chaos starts at {values[start]:g}: {int(after.sum())} of {after.size} points from "
+        "there on have a chaotic channel"
+    )
+    return onset + (f", none at {_listed(windows)}" if windows else "")
+
+
 def _growth(path) -> tuple[str, str, tuple[bool, bool]]:
     """Chaos at the low against the high end of a sweep (the lowest and the highest third of
-    its points, at least one each), and B y's verdicts along it."""
+    its points, at least one each), where it starts, and B y's verdicts along it."""
     table = pd.read_csv(path)
     parameter = table.columns[0]
     values = np.sort(table[parameter].unique())
@@ -333,13 +362,10 @@ def _growth(path) -> tuple[str, str, tuple[bool, bool]]:
     not_periodic = by[by.verdict != "periodic"][parameter].to_numpy()
     by_periodic = len(by) > 0 and not_periodic.size == 0
     by_text = f"periodic at {len(by) - not_periodic.size} of {len(by)} points" + (
-        f" (not at {', '.join(f'{v:g}' for v in not_periodic[:5])}"
-        + (", …" if not_periodic.size > 5 else "")
-        + ")"
-        if not_periodic.size
-        else ""
+        f" (not at {_listed([f'{v:g}' for v in not_periodic])})" if not_periodic.size else ""
     )
-    return f"low end {low_text}; high end {high_text}", by_text, (bool(grows), by_periodic)
+    ends = f"low end {low_text}; high end {high_text}; {_onset_text(table, parameter, values)}"
+    return ends, by_text, (bool(grows), by_periodic)
 
 
 def claim_bifurcation(inputs: Inputs) -> dict:

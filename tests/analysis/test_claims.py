@@ -121,11 +121,44 @@ def test_bifurcation_claim_compares_the_ends_of_the_dense_sweeps(tmp_path):
     assert row["verdict"] == SUPPORTED
     assert "0.0001 to 0.0002 (2 points): 0.00 of the channels chaotic" in row["evidence"]
     assert "B y periodic at 6 of 6 points" in row["evidence"]
+    assert (
+        "chaos starts at 0.0004: 3 of 3 points from there on have a chaotic channel;"
+        in (row["evidence"])
+    )
     one_off = ["periodic"] * 4 + ["chaotic", "periodic"]
     inputs["bifurcation_speed_table"] = _sweep_table(tmp_path, "speed2", one_off)
     row = next(r for r in judge_all(inputs, BOOT)[0] if r["claim"].startswith("Chaos grows"))
     assert row["verdict"] == "mixed"
     assert "periodic at 5 of 6 points (not at 0.0005)" in row["evidence"]
+
+
+def test_the_onset_of_chaos_names_the_windows_after_it(tmp_path):
+    """Chaotic at the 2nd, 5th and 7th of 8 points: chaos starts at the 2nd, and the points
+    without a chaotic channel after it are reported as stretches (3rd–4th, 6th, 8th)."""
+    pattern = [False, True, False, False, True, False, True, False]
+    rows = [
+        {
+            "speed": 30.0 * (k + 1),
+            "channel": "A.x",
+            "model_lyapunov_exponent_per_s": 40.0 if chaotic else -5.0,
+            "model_lyapunov_stderr_per_s": 2.0,
+            "zero_one_K": 0.9 if chaotic else 0.05,
+            "section_period": 0 if chaotic else 1,
+            "verdict": "chaotic" if chaotic else "periodic",
+        }
+        for k, chaotic in enumerate(pattern)
+    ]
+    path = tmp_path / "speed.csv"
+    pd.DataFrame(rows).to_csv(path, index=False)
+    row = next(
+        r
+        for r in judge_all({"bifurcation_speed_table": str(path)}, BOOT)[0]
+        if r["claim"].startswith("Chaos grows")
+    )
+    assert (
+        "chaos starts at 60: 3 of 7 points from there on have a chaotic channel, "
+        "none at 90–120, 180, 240"
+    ) in row["evidence"]
 
 
 def test_flagship_chaos_leads_with_the_model_exponent(tmp_path):
