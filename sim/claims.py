@@ -328,8 +328,7 @@ def _onset_text(table: pd.DataFrame, parameter: str, values: np.ndarray) -> str:
     """Where chaos starts along a sweep: the lowest point with a channel judged chaotic, how
     many points from there on have one, and the stretches of consecutive points without one
     (periodic windows, or points no indicator decides)."""
-    verdicts = table.groupby(parameter).verdict
-    chaotic = verdicts.apply(lambda v: bool((v == "chaotic").any())).reindex(values).to_numpy()
+    chaotic = np.isin(values, table.loc[table.verdict == "chaotic", parameter])
     if not chaotic.any():
         return "no point has a chaotic channel"
     start = int(np.argmax(chaotic))

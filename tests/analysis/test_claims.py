@@ -121,10 +121,8 @@ def test_bifurcation_claim_compares_the_ends_of_the_dense_sweeps(tmp_path):
     assert row["verdict"] == SUPPORTED
     assert "0.0001 to 0.0002 (2 points): 0.00 of the channels chaotic" in row["evidence"]
     assert "B y periodic at 6 of 6 points" in row["evidence"]
-    assert (
-        "chaos starts at 0.0004: 3 of 3 points from there on have a chaotic channel;"
-        in (row["evidence"])
-    )
+    onset = "chaos starts at 0.0004: 3 of 3 points from there on have a chaotic channel;"
+    assert onset in row["evidence"]
     one_off = ["periodic"] * 4 + ["chaotic", "periodic"]
     inputs["bifurcation_speed_table"] = _sweep_table(tmp_path, "speed2", one_off)
     row = next(r for r in judge_all(inputs, BOOT)[0] if r["claim"].startswith("Chaos grows"))
