@@ -33,12 +33,11 @@ from sim.solve import methods
 from sim.solve.control import T_ROUNDOFF
 from sim.solve.status import NONFINITE, OK, STEP_COLLAPSE
 from sim.solve.stepping import (
-    FLIPS_PER_GAP,
     NO_GAP,
     _check_state,
     _fail,
-    _first_event,
     _flip_and_refresh,
+    event_in_step,
     start_trajectory,
     take_step,
 )
@@ -89,18 +88,14 @@ def follow(sys, work, carry, trajectory, step_ends, n_steps: int, options, buffe
                 tally.failure_step = cap
                 return _fail(tally, STEP_COLLAPSE if s == OK else s, t)
             continue
-        if forced == 0.0 and flips_at_t <= FLIPS_PER_GAP * work.gaps.shape[0]:
-            g, theta = _first_event(sys, work, mem, y)
-            if g >= 0:
-                if theta * hs <= hmin:
-                    flips_at_t += 1
-                    s = _flip_and_refresh(sys, work, carry, mem, g, t, y, buffers.rev_events, tally)
-                    if s != OK:
-                        return _fail(tally, s, t)
-                    continue
-                forced = theta * hs
-                pending = g
-                continue
+        check = event_in_step(
+            sys, work, carry, mem, t, hs, y, forced, flips_at_t, hmin, buffers.rev_events, tally
+        )
+        if check.status != OK:
+            return _fail(tally, check.status, t)
+        if check.retake:
+            forced, pending, flips_at_t = check.forced, check.pending, check.flips_at_t
+            continue
         s = _check_state(sys, work, options, tally)
         if s != OK:
             return _fail(tally, s, t + hs)

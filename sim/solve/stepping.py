@@ -24,9 +24,11 @@ The caller advances the integration in chunks (`integrate` returns at t_end);
 all state between chunks lives in the structures it passes (`sim.solve.state`).
 """
 
+from typing import NamedTuple
+
 import numpy as np
 
-from sim.jit import kernel
+from sim.jit import kernel, kernel_inline
 from sim.model.clearance import face_switch_energy, gap, gap_depths
 from sim.model.gaps import MEM_GRAZED, MEM_IN_CONTACT, MEM_ONSET_RATE
 from sim.model.system import OUT_PENETRATION
@@ -160,6 +162,44 @@ def _flip_and_refresh(sys, work, carry, mem, g: int, t: float, y: np.ndarray, re
     rev_events[min(tally.sections, rev_events.shape[0] - 1)] += 1
     tally.evaluations += 1
     return rhs(sys, work, mem, t, y, carry.derivative)
+
+
+class EventCheck(NamedTuple):
+    """What the loop does about contact events after a step passed its error test
+    (:func:`event_in_step`).
+
+    Attributes:
+        status: OK, or the failure status of a flip's re-evaluation at the step's start.
+        retake: the step does not stand: the next one starts from the same t.
+        forced: the retaken step's length (s), ending on the event; 0 after a flip at t.
+        pending: the gap to flip at the end of the forced step (NO_GAP after a flip at t).
+        flips_at_t: flips made at the step's start time so far.
+    """
+
+    status: int
+    retake: bool
+    forced: float
+    pending: np.int64
+    flips_at_t: int
+
+
+@kernel_inline
+def event_in_step(sys, work, carry, mem, t, hs, y, forced, flips_at_t, hmin, rev_events, tally):
+    """The first contact event inside the step from (t, y) of length hs (s) that passed its
+    error test, work holding its end (:class:`EventCheck`). None is looked for in a forced
+    step (it ends on its event) nor after FLIPS_PER_GAP flips per gap at t. A gap already
+    across at t (a previous event ended a hair's breadth on the other side) flips now and the
+    step is retaken; one that crosses inside the step makes the retaken step end on its
+    crossing. Inlined: it runs after every accepted step of both loops."""
+    if forced > 0.0 or flips_at_t > FLIPS_PER_GAP * work.gaps.shape[0]:
+        return EventCheck(OK, False, forced, NO_GAP, flips_at_t)
+    g, theta = _first_event(sys, work, mem, y)
+    if g < 0:
+        return EventCheck(OK, False, forced, NO_GAP, flips_at_t)
+    if theta * hs > hmin:
+        return EventCheck(OK, True, theta * hs, np.int64(g), flips_at_t)
+    s = _flip_and_refresh(sys, work, carry, mem, g, t, y, rev_events, tally)
+    return EventCheck(s, True, 0.0, NO_GAP, flips_at_t + 1)
 
 
 @kernel
@@ -351,20 +391,14 @@ def integrate(sys, work, carry, trajectory, t_end: float, options, buffers, tall
                 tally.failure_step = h
                 return _fail(tally, STEP_COLLAPSE if s == OK else s, t)
             continue
-        if forced == 0.0 and flips_at_t <= FLIPS_PER_GAP * work.gaps.shape[0]:
-            g, theta = _first_event(sys, work, mem, y)
-            if g >= 0:
-                if theta * hs <= hmin:
-                    # Already across at the start of the step (a previous event
-                    # ended a hair's breadth on the other side): flip now.
-                    flips_at_t += 1
-                    s = _flip_and_refresh(sys, work, carry, mem, g, t, y, buffers.rev_events, tally)
-                    if s != OK:
-                        return _fail(tally, s, t)
-                    continue
-                forced = theta * hs
-                pending = g
-                continue
+        check = event_in_step(
+            sys, work, carry, mem, t, hs, y, forced, flips_at_t, hmin, buffers.rev_events, tally
+        )
+        if check.status != OK:
+            return _fail(tally, check.status, t)
+        if check.retake:
+            forced, pending, flips_at_t = check.forced, check.pending, check.flips_at_t
+            continue
         # The step is accepted; work holds the evaluation at its end.
         means = buffers.means
         write_fast_values(sys, work, work.ynew, means.columns, means.end)
