@@ -2,7 +2,8 @@
 stretch ln(d / d0) beside the contact events of the reference and of the perturbed trajectory.
 
 The exponent of `sim.studies.model_lyapunov.linkage_lyapunov` on rigid links, at one operating
-point of the six-bar (the points of benchmarks/exponent_invariance.py), rtol 1e-6, d0 = 1e-6 m.
+point of the six-bar (the points of benchmarks/exponent_invariance.py), rtol 1e-6, d0 = 1e-6 m;
+its propagator is built here, counting the events, and run by `propagator_lyapunov`.
 Prints one JSON line: the exponent; the share of intervals with a contact event in either
 trajectory and with a different number of events in the two; the share of the total stretch
 those intervals carry; the mean stretch of an interval without events, with the same events
@@ -22,8 +23,12 @@ import numpy as np
 from exponent_invariance import POINTS, interval_stretch
 
 from sim.scene import load_scene
-from sim.studies import model_lyapunov
-from sim.studies.model_lyapunov import LinkagePropagator, linkage_lyapunov
+from sim.studies.model_lyapunov import (
+    LinkagePropagator,
+    linkage_propagator,
+    propagator_lyapunov,
+    with_tolerances,
+)
 
 
 @dataclass(frozen=True, eq=False)
@@ -49,27 +54,20 @@ class CountingPropagator(LinkagePropagator):
 
 def main() -> None:
     point, interval_text, revolutions, transient = sys.argv[1:]
-    made: list[CountingPropagator] = []
-    plain = model_lyapunov.linkage_propagator
-
-    def counting(scene: dict, **options) -> CountingPropagator:
-        made.append(CountingPropagator(*vars(plain(scene, **options)).values()))
-        return made[-1]
-
-    # linkage_lyapunov builds its propagator by this module-level name
-    model_lyapunov.linkage_propagator = counting
-    result = linkage_lyapunov(
-        load_scene("sixbar", POINTS[point]),
+    scene = with_tolerances(load_scene("sixbar", POINTS[point]), (1e-6, 1e-8))
+    plain = linkage_propagator(scene, rigid=True)
+    counting = CountingPropagator(plain.integration, plain.leader, plain.scene_name)
+    result = propagator_lyapunov(
+        counting,
+        scene,
         revolutions=float(revolutions),
         transient_revolutions=float(transient),
         interval_revolutions=float(Fraction(interval_text)),
-        tolerances=(1e-6, 1e-8),
-        rigid=True,
     )
     stretch = interval_stretch(result)
     n = stretch.size
-    reference = np.array(made[0].reference_events[-n:])
-    perturbed = np.array(made[0].perturbed_events[-n:])
+    reference = np.array(counting.reference_events[-n:])
+    perturbed = np.array(counting.perturbed_events[-n:])
     eventful = (reference > 0) | (perturbed > 0)
     differing = reference != perturbed
     same = eventful & ~differing

@@ -311,14 +311,36 @@ def linkage_lyapunov(
         A :class:`~sim.analysis.lyapunov.BenettinResult` in seconds (``time``, ``interval``) and
         1/s (``exponent``, ``stderr``, ``running``).
     """
+    scene = with_tolerances(scene, exponent_tolerances(scene, tolerances))
+    return propagator_lyapunov(
+        linkage_propagator(scene, ideal=ideal, rigid=rigid),
+        scene,
+        revolutions=revolutions,
+        transient_revolutions=transient_revolutions,
+        d0=d0,
+        interval_revolutions=interval_revolutions,
+    )
+
+
+def propagator_lyapunov(
+    propagator: LinkagePropagator,
+    scene: dict,
+    *,
+    revolutions: float,
+    transient_revolutions: float,
+    d0: float = DEFAULT_D0,
+    interval_revolutions: float = DEFAULT_INTERVAL_REVOLUTIONS,
+) -> BenettinResult:
+    """The exponent of :func:`linkage_lyapunov` (1/s) on a propagator already built from
+    ``scene`` at t = 0 (:func:`linkage_propagator`, or a subclass of :class:`LinkagePropagator`
+    that records what its trajectories step through); the arguments as there.
+    """
     if not 0 <= transient_revolutions < revolutions:
         raise ValueError(
             f"transient_revolutions = {transient_revolutions} must lie in [0, {revolutions})"
         )
     if interval_revolutions <= 0:
         raise ValueError(f"interval_revolutions = {interval_revolutions} must be positive")
-    scene = with_tolerances(scene, exponent_tolerances(scene, tolerances))
-    propagator = linkage_propagator(scene, ideal=ideal, rigid=rigid)
     interval = interval_revolutions * crank_period(scene)
     distance = propagator.distance(scene)
     return benettin(
