@@ -311,6 +311,7 @@ def linkage_lyapunov(
         A :class:`~sim.analysis.lyapunov.BenettinResult` in seconds (``time``, ``interval``) and
         1/s (``exponent``, ``stderr``, ``running``).
     """
+    _check_schedule(revolutions, transient_revolutions, interval_revolutions)
     scene = with_tolerances(scene, exponent_tolerances(scene, tolerances))
     return propagator_lyapunov(
         linkage_propagator(scene, ideal=ideal, rigid=rigid),
@@ -320,6 +321,17 @@ def linkage_lyapunov(
         d0=d0,
         interval_revolutions=interval_revolutions,
     )
+
+
+def _check_schedule(revolutions: float, transient_revolutions: float, interval: float) -> None:
+    """ValueError unless 0 <= transient < revolutions and the renormalisation interval (all in
+    crank revolutions) is positive: checked before a propagator is built."""
+    if not 0 <= transient_revolutions < revolutions:
+        raise ValueError(
+            f"transient_revolutions = {transient_revolutions} must lie in [0, {revolutions})"
+        )
+    if interval <= 0:
+        raise ValueError(f"interval_revolutions = {interval} must be positive")
 
 
 def propagator_lyapunov(
@@ -335,12 +347,7 @@ def propagator_lyapunov(
     ``scene`` at t = 0 (:func:`linkage_propagator`, or a subclass of :class:`LinkagePropagator`
     that records what its trajectories step through); the arguments as there.
     """
-    if not 0 <= transient_revolutions < revolutions:
-        raise ValueError(
-            f"transient_revolutions = {transient_revolutions} must lie in [0, {revolutions})"
-        )
-    if interval_revolutions <= 0:
-        raise ValueError(f"interval_revolutions = {interval_revolutions} must be positive")
+    _check_schedule(revolutions, transient_revolutions, interval_revolutions)
     interval = interval_revolutions * crank_period(scene)
     distance = propagator.distance(scene)
     return benettin(
