@@ -183,7 +183,7 @@ def _duffing(t: float, y: np.ndarray) -> list[float]:
 
 DUFFING_PERIOD = 2 * np.pi / 1.2
 SAMPLES_PER_REVOLUTION = 64
-N_REVOLUTIONS = 160
+N_REVOLUTIONS = 400
 
 
 @pytest.fixture(scope="session")

@@ -52,38 +52,24 @@ def test_ideal_sixbar_exponent_is_the_baumgarte_rate():
     assert np.isclose(result.time[-1], 25 * crank_period(scene))
 
 
-def test_the_leader_is_the_run_and_the_follower_takes_its_steps():
+def test_the_leader_is_the_run():
     # Quarter revolutions are the chunks `simulate` advances by. The reference (the leader)
     # advances through them as the run does, logging its steps, and must reproduce the run
-    # through its impacts to rounding. The follower, started from the leader's own state, takes
-    # the logged steps and meets the same contact events. It locates each crossing on its own
-    # step, which ends a hair's breadth (the interpolation error, ~1e-9 s) from the leader's,
-    # so it takes one step more per event at most, and the rattling journal amplifies that
-    # hair's breadth enough for a handful of its steps to be halved (REFINE): one in a hundred
-    # at most.
+    # through its impacts to rounding: the same compiled code on the same inputs, so on one
+    # machine the two agree run after run (another machine's rounding gives another orbit,
+    # which its own run reproduces alike).
     scene = load_scene("sixbar", [*FLAGSHIP, "simulation.revolutions=2"])
     run = simulate(scene)
     assert run.attrs["solver_contact_events"] > 20
     propagator = linkage_propagator(scene)
-    leader, follower = propagator.leader, propagator.integration
+    leader = propagator.leader
     t, quarter = 0.0, crank_period(scene) / 4
     for _ in range(8):
-        start = propagator.pack()
         steps = leader.count("accepted")
-        propagator.advance_leader(start, t, quarter)
-        propagator.advance(start, t, quarter)
+        propagator.advance_leader(propagator.pack(), t, quarter)
         t += quarter
         assert leader.count("logged") == leader.count("accepted") - steps
-    steps, events, halved = (
-        leader.count("accepted"),
-        leader.count("events"),
-        follower.count("rejected"),
-    )
-    assert follower.count("events") == events
-    assert halved <= steps / 100
-    assert steps <= follower.count("accepted") <= steps + events + 2 * halved
-    state = propagator.pack()
-    q = state[: leader.system.n]
+    q = propagator.pack()[: leader.system.n]
     ecc = np.array(eccentricity(leader.system, 0, q))
     np.testing.assert_allclose(
         ecc, run.section_eccentricity.sel(joint="A", revolution=2).values, rtol=0, atol=1e-12
@@ -95,6 +81,43 @@ def test_the_leader_is_the_run_and_the_follower_takes_its_steps():
         rtol=0,
         atol=1e-12,
     )
+
+
+#: what the follower must do over one renormalisation interval from the leader's own state,
+#: on the rattling flagship (64 intervals of 1/32 revolution). Measured under four OpenBLAS
+#: kernels and numba's generic CPU: its events differ from the leader's by 0-1.8 %, it halves
+#: 0-0.3 % of the steps, and the median separation at an interval's end is 2e-10 to 7e-10 m;
+#: a follower that takes every other logged step (no error control of its own) ends 1.2e-4 m
+#: away. The bounds leave margins of 2.8, 6.7 and 14 over the measured worst.
+EVENT_SHARE, HALVED_SHARE, MEDIAN_SEPARATION = 0.05, 0.02, 1e-8
+
+
+def test_the_follower_takes_the_leaders_steps_and_stays_on_its_orbit():
+    # The follower, started from the leader's state, takes the leader's logged steps, so the
+    # two are orbits of one discrete map; it locates each crossing on its own step, which ends
+    # a hair's breadth (the interpolation error, ~1e-9 s) from the leader's, and the rattling
+    # journal amplifies that, now and then into an impact of its own: so its event count
+    # differs from the leader's by a few, a few of its steps are halved (REFINE), and in some
+    # intervals it ends up to 1e-5 m away. What holds on any machine: every logged end is a
+    # step end of the follower, its events and halvings are a small share of the leader's,
+    # and in most intervals it ends far below the exponent's d0 (1e-6 m) from the leader.
+    scene = load_scene("sixbar", [*FLAGSHIP, "simulation.revolutions=2"])
+    propagator = linkage_propagator(scene)
+    distance = propagator.distance(scene)
+    leader, follower = propagator.leader, propagator.integration
+    t, interval = 0.0, crank_period(scene) / 32
+    separations = []
+    for _ in range(64):
+        start = propagator.pack()
+        reference = propagator.advance_leader(start, t, interval)
+        separations.append(distance(reference, propagator.advance(start, t, interval)))
+        t += interval
+    steps, events = leader.count("accepted"), leader.count("events")
+    assert events > 100
+    assert abs(follower.count("events") - events) <= EVENT_SHARE * events
+    assert follower.count("rejected") <= HALVED_SHARE * steps
+    assert follower.count("accepted") >= steps
+    assert np.median(separations) < MEDIAN_SEPARATION
 
 
 def test_the_follower_retraces_a_smooth_leader_exactly():
