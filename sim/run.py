@@ -31,7 +31,7 @@ from sim.solve.control import ERR_OLD_MIN
 from sim.solve.dae import Work, make_work, state_size
 from sim.solve.means import make_means
 from sim.solve.methods import Dopri5, make_carry, method_of
-from sim.solve.record import peak_slots, peak_width, record_row, row_columns, row_width
+from sim.solve.record import peak_slots, peak_width, row_width
 from sim.solve.state import CLOCK, TALLY, Buffers, Options, Trajectory
 from sim.solve.status import (
     MAX_STEPS,
@@ -252,14 +252,11 @@ def prepare(
     clock = np.zeros(1, dtype=CLOCK)
     clock[0]["h"] = min(1e-5 * period, options.hmax)
     clock[0]["facold"] = ERR_OLD_MIN
-    # The integrator samples times in (t, t + h]; t = 0 is recorded here, and starts the
-    # first sample's window and the peaks.
+    # The integrator samples times in (t, t + h], and t = 0 on its first call.
     assert state_size(system) == y.size
     work = make_work(system)
     out_rows = np.zeros((n_out, width))
     sec_rows = np.zeros((sec_t.size, width))
-    for rows in (out_rows, sec_rows):
-        record_row(system, work, mem, 0.0, y, rows[0])
     n_bodies, n_joints = len(layout.bodies), len(layout.clearance_joints)
     sampling = scene["simulation"]["sampling"]
     buffers = Buffers(
@@ -272,14 +269,10 @@ def prepare(
         # one row per revolution (ending at each section), one more for what follows the last
         rev_peaks=np.zeros((sec_t.size + 1, n_peaks)),
         rev_events=np.zeros(sec_t.size + 1, dtype=np.int64),
-        means=make_means(out_rows[0], n_bodies, n_joints, windows=sampling == "mean"),
+        means=make_means(width, n_bodies, n_joints, windows=sampling == "mean"),
         step_ends=np.zeros(step_log),
     )
-    columns = row_columns(n_bodies, n_joints)
-    for peaks in (buffers.peaks, buffers.rev_peaks[0]):
-        stepping.update_peaks(out_rows[0], columns, buffers.peak_slots, n_bodies, n_joints, peaks)
     tally = np.zeros(1, dtype=TALLY)
-    tally[0]["outputs"] = tally[0]["sections"] = 1
     return Integration(
         system=system,
         layout=layout,
@@ -515,6 +508,8 @@ class Run:
         self.bar = Progress(self.t_end, progress)
         self.watch = EnergyWatch(self.integ)
         self.next_audit = self.period / 4.0  # s: when the energy watch next audits
+        # the integrator's first call records the samples at t = 0 (and takes no step)
+        self._check(self.integ.advance(0.0))
 
     def advance_to(self, t_stop: float) -> None:
         """Integrate up to min(t_stop, the run's end) (s); SimulationError on a failure."""
@@ -522,21 +517,25 @@ class Run:
         wall0 = time.perf_counter()
         while self.t < t_stop:
             self.t = min(self.t + self.period / 4.0, t_stop)
-            status = self.integ.advance(self.t)
-            if status != OK:
-                failure = diagnose(self.integ, status)
-            elif self.t >= min(self.next_audit, self.t_end):
+            self._check(self.integ.advance(self.t))
+            if self.t >= min(self.next_audit, self.t_end):
                 # the audit every quarter revolution, however often the caller pauses the run
                 # (the model exponent pauses it 32 times a revolution)
                 self.next_audit = self.t + self.period / 4.0
-                failure = self.watch.drift()
-            else:
-                failure = None
-            if failure is not None:
-                self.bar.close()
-                raise SimulationError(f"scene '{self.scene['name']}': " + failure)
+                self._fail_on(self.watch.drift())
             self.bar.update(self.t)
         self.wall += time.perf_counter() - wall0
+
+    def _check(self, status: int) -> None:
+        """SimulationError with the diagnosis unless the integrator's status is OK."""
+        if status != OK:
+            self._fail_on(diagnose(self.integ, status))
+
+    def _fail_on(self, failure: str | None) -> None:
+        """SimulationError with this failure's diagnosis, if any."""
+        if failure is not None:
+            self.bar.close()
+            raise SimulationError(f"scene '{self.scene['name']}': " + failure)
 
     def finish(self) -> tuple[xr.Dataset, State]:
         """Integrate to the end; the output Dataset and the final state."""

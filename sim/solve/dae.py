@@ -30,7 +30,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from sim.jit import kernel, kernel_inline
+from sim.jit import kernel, kernel_inline, spliced
 from sim.model.beams import beam_damping_power, beam_forces
 from sim.model.clearance import revolute_clearance_forces, translational_clearance_forces
 from sim.model.constraints import constraint_terms
@@ -232,7 +232,7 @@ def block_times(sys, matrix: np.ndarray, x: np.ndarray, out: np.ndarray) -> None
             out[i] = acc
 
 
-@kernel_inline
+@spliced
 def no_rotations(work) -> np.ndarray:
     """An empty table of rotations: the contact forces compute each body's (cos θ, sin θ)
     from q (sim.model.kinematics.frame_rotation). A view, so nothing is allocated."""

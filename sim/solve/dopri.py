@@ -11,7 +11,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from sim.jit import kernel
+from sim.jit import kernel, kernel_inline, spliced
 from sim.solve.control import ERR_MIN, ERR_OLD_MIN
 from sim.solve.dae import adopt_tree_state, rhs
 from sim.solve.dense import hermite_coefficients, interpolate
@@ -42,7 +42,7 @@ STRETCH = 1.01
 step is left over."""
 
 
-@kernel
+@spliced
 def _stages(sys, work, carry, mem, t: float, h: float, y: np.ndarray) -> int:
     """Stages k2…k6 from k1 = carry.derivative into carry.stages; the new state into
     work.ynew, k7 = its derivative into work.ydot_end."""
@@ -86,7 +86,7 @@ def _stages(sys, work, carry, mem, t: float, h: float, y: np.ndarray) -> int:
     return rhs(sys, work, mem, t + h, yn, k7)
 
 
-@kernel
+@spliced
 def _error_norm(work, carry, y: np.ndarray, h: float, n2: int, rtol: float, atol: float) -> float:
     """RMS of the embedded error estimate over q and q̇, scaled by atol + rtol·|y|.
     The energy quadratures are left out: they follow the motion's accuracy."""
@@ -102,7 +102,7 @@ def _error_norm(work, carry, y: np.ndarray, h: float, n2: int, rtol: float, atol
     return np.sqrt(total / n2)
 
 
-@kernel
+@spliced
 def _dense_coefficients(work, carry, y: np.ndarray, h: float) -> None:
     """Coefficients of the continuous extension over the step just computed: the
     Hermite part and DOPRI5's fourth-order term d4."""
@@ -115,7 +115,7 @@ def _dense_coefficients(work, carry, y: np.ndarray, h: float) -> None:
         d[4, i] = h * (D1 * k1[i] + D3 * k3[i] + D4 * k4[i] + D5 * k5[i] + D6 * k6[i] + D7 * k7[i])
 
 
-@kernel
+@kernel_inline
 def plan(t: float, h: float, t_end: float, buffers, tally) -> float:
     """The step to take from t given the step size h the controller wants: h, stretched
     or shortened to land on t_end when it ends within 1 % of it (samples come from the
@@ -123,7 +123,7 @@ def plan(t: float, h: float, t_end: float, buffers, tally) -> float:
     return t_end - t if t + STRETCH * h >= t_end else h
 
 
-@kernel
+@kernel_inline
 def mark_grazes(sys, work, mem) -> None:
     """Nothing to do: a stage evaluation that penetrated a gap has marked it MEM_GRAZED
     (`sim.model.gaps`)."""
@@ -151,7 +151,7 @@ def make_carry(n: int, m: int) -> Carry:
     return Carry(derivative=np.zeros(2 * n + 2), stages=np.zeros((5, 2 * n + 2)))
 
 
-@kernel
+@kernel_inline
 def start(sys, work, carry) -> None:
     """Nothing to prepare: a step starts from y and Carry.derivative alone."""
 
@@ -174,12 +174,12 @@ def step(sys, work, carry, mem, t: float, h: float, y: np.ndarray, options, tall
     return OK, _error_norm(work, carry, y, h, 2 * sys.n, options.rtol, options.atol)
 
 
-@kernel
+@kernel_inline
 def accept(sys, work, carry) -> None:
     """Nothing beyond the loop's own: the step's end derivative becomes the next k1 (FSAL)."""
 
 
-@kernel
+@kernel_inline
 def step_factor(err: float, err_old: float) -> float:
     """Ratio of the next step size to this one: PI control
     SAFE · err_old^β / err^(1/5 − 0.75 β) (Hairer & Wanner's DOPRI5)."""

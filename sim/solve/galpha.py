@@ -44,7 +44,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from sim.jit import kernel
+from sim.jit import kernel, kernel_inline, spliced
 from sim.model.clearance import gap
 from sim.model.constraints import constraint_terms
 from sim.model.gaps import MEM_GRAZED, MEM_IN_CONTACT
@@ -140,7 +140,7 @@ def make_carry(n: int, m: int) -> Carry:
     )
 
 
-@kernel
+@kernel_inline
 def coefficients(rho_inf: float) -> tuple[float, float, float, float]:
     """(α_m, α_f, β, γ) of Chung & Hulbert for the spectral radius ρ∞."""
     am = (2.0 * rho_inf - 1.0) / (rho_inf + 1.0)
@@ -150,7 +150,7 @@ def coefficients(rho_inf: float) -> tuple[float, float, float, float]:
     return am, af, beta, gamma
 
 
-@kernel
+@kernel_inline
 def start(sys, work, carry) -> None:
     """Start from the evaluation at (t, y) (ẏ in carry.derivative, λ in work.rhs):
     a_0 = q̈_0."""
@@ -162,7 +162,7 @@ def start(sys, work, carry) -> None:
         carry.lam[r] = work.rhs[r]
 
 
-@kernel
+@kernel_inline
 def accept(sys, work, carry) -> None:
     """Make the step just computed the start of the next: a_n, q̈_n, λ_n."""
     for i in range(carry.acc.shape[0]):
@@ -172,7 +172,7 @@ def accept(sys, work, carry) -> None:
         carry.lam[r] = carry.lam_new[r]
 
 
-@kernel
+@kernel_inline
 def plan(t: float, h: float, t_end: float, buffers, tally) -> float:
     """The step to take from t given the step size h the controller wants: equal steps
     to the next sample, window end or t_end, none longer than h. Samples record the step's
@@ -184,7 +184,7 @@ def plan(t: float, h: float, t_end: float, buffers, tally) -> float:
     return left / np.ceil(left / h * (1.0 - PLAN_ROUNDOFF))
 
 
-@kernel
+@kernel_inline
 def mark_grazes(sys, work, mem) -> None:
     """Mark MEM_GRAZED every open gap that the step's continuous extension penetrates
     at GRAZE_PROBES. The Newton iterates are not points of the motion (an iterate that
@@ -212,7 +212,7 @@ def sample(sys, work, mem, t0: float, h: float, time: float, row: np.ndarray) ->
     return OK
 
 
-@kernel
+@kernel_inline
 def _scaled_rms(x: np.ndarray, ref0: np.ndarray, ref1: np.ndarray, rtol: float, atol: float):
     """RMS of x_i / (atol + rtol max(|ref0_i|, |ref1_i|))."""
     total = 0.0
@@ -222,7 +222,7 @@ def _scaled_rms(x: np.ndarray, ref0: np.ndarray, ref1: np.ndarray, rtol: float, 
     return np.sqrt(total / x.shape[0])
 
 
-@kernel
+@spliced
 def _residual(sys, work, carry, mem, t, q, v, xdd, lam, bh2, rtol, atol) -> float:
     """The scaled Newton right-hand side into carry.newton_rhs, −β h² r and −Φ, with
     r = M q̈ + Φ_qᵀ λ − Q, from a fresh evaluation at (t, q, v); returns the size
@@ -348,7 +348,7 @@ def step(sys, work, carry, mem, t: float, h: float, y: np.ndarray, options, tall
     return s, err
 
 
-@kernel
+@spliced
 def _step(sys, work, carry, mem, t: float, h: float, y: np.ndarray, rtol, atol, rho_inf):
     """One step from (t, y), ẏ in carry.derivative, a_n, q̈_n and λ_n in carry: the new
     state into work.ynew, its derivative into work.ydot_end, the Hermite
@@ -426,7 +426,7 @@ def _step(sys, work, carry, mem, t: float, h: float, y: np.ndarray, rtol, atol, 
     return OK, max(err_q, err_energy), evaluations, jacobians
 
 
-@kernel
+@spliced
 def _energy_quadratures(sys, work, mem, h: float, y: np.ndarray, k0, rtol, atol) -> float:
     """The drive work (trapezoidal rule) and the dissipated energy (Simpson's rule,
     the midpoint state from the Hermite extension) over the step into work.ynew;
@@ -453,7 +453,7 @@ def _energy_quadratures(sys, work, mem, h: float, y: np.ndarray, k0, rtol, atol)
     return error / (atol + rtol * kinetic_energy(sys, work, yn[n : 2 * n]))
 
 
-@kernel
+@kernel_inline
 def step_factor(err: float, err_old: float) -> float:
     """Ratio of the next step size to this one for a local error of order h³ (err_old,
     DOPRI5's, is not used),

@@ -27,7 +27,7 @@ References:
 
 import numpy as np
 
-from sim.jit import kernel
+from sim.jit import entry
 from sim.model.gaps import MEM_GRAZED
 from sim.solve import methods
 from sim.solve.control import T_ROUNDOFF
@@ -49,7 +49,7 @@ from sim.solve.stepping import (
 REFINE = 10.0
 
 
-@kernel
+@entry
 def follow(sys, work, carry, trajectory, step_ends, n_steps: int, options, buffers, tallies):
     """Advance the trajectory (`sim.solve.state.Trajectory`) through the first n_steps step
     ends of `step_ends` (s, increasing, after its clock's t), splitting a step at each of its

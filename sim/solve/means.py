@@ -26,7 +26,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from sim.jit import kernel
+from sim.jit import kernel, spliced
 from sim.quantities import INTERVAL_MEAN, SAMPLE, recorded
 from sim.solve.dense import interpolate
 from sim.solve.record import RowColumns, column_layout, row_columns, write_rate_sources
@@ -57,9 +57,10 @@ class Means(NamedTuple):
     integral: np.ndarray  # (width,) ∫ of the quadrature columns from t_edge to t_node
 
 
-def make_means(first_row: np.ndarray, n_bodies: int, n_joints: int, windows: bool) -> Means:
-    """The interval means of a run from its first sample row (point values at t = 0, the
-    first window's start); without `windows` (simulation.sampling: point) none is open."""
+def make_means(width: int, n_bodies: int, n_joints: int, windows: bool) -> Means:
+    """The interval means of a run whose sample rows are `width` wide, to be started by its
+    first sample row (`start_windows`); without `windows` (simulation.sampling: point) none is
+    open."""
     layout = column_layout(n_bodies, n_joints)
     columns = row_columns(n_bodies, n_joints)
     means = [q for q in recorded(SAMPLE) if q.sampling == INTERVAL_MEAN]
@@ -92,12 +93,23 @@ def make_means(first_row: np.ndarray, n_bodies: int, n_joints: int, windows: boo
         target=np.array(target, dtype=np.int64),
         source=np.array(source, dtype=np.int64),
         per=np.array(per, dtype=np.int64),
-        node=first_row.copy(),
-        end=first_row.copy(),
-        edge=first_row.copy(),
-        here=first_row.copy(),
-        integral=np.zeros_like(first_row),
+        node=np.zeros(width),
+        end=np.zeros(width),
+        edge=np.zeros(width),
+        here=np.zeros(width),
+        integral=np.zeros(width),
     )
+
+
+@spliced
+def start_windows(means, first_row: np.ndarray) -> None:
+    """Start the interval means from the run's first sample row (point values at its start
+    time, the first window's start)."""
+    for c in range(first_row.shape[0]):
+        means.node[c] = first_row[c]
+        means.end[c] = first_row[c]
+        means.edge[c] = first_row[c]
+        means.here[c] = first_row[c]
 
 
 @kernel

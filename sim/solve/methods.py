@@ -29,9 +29,10 @@ from types import ModuleType
 from typing import NamedTuple
 
 import numpy as np
-from numba.extending import overload
+from numba.core import cgutils, types
+from numba.extending import intrinsic
 
-from sim.jit import kernel
+from sim.jit import spliced
 from sim.solve import dopri, galpha
 from sim.solve.control import FAC_MAX, FAC_MIN
 
@@ -54,7 +55,6 @@ def method_of(solver: dict) -> Dopri5 | GeneralizedAlpha:
 
 
 _MODULES = {Dopri5: dopri, GeneralizedAlpha: galpha}
-_JIT = {"_nrt": False}  # as sim.jit.kernel
 
 
 def implementation(method: Dopri5 | GeneralizedAlpha) -> ModuleType:
@@ -72,14 +72,14 @@ def _module(options):
     return _MODULES[options.types[options.fields.index("method")].instance_class]
 
 
-@kernel
+@spliced
 def grown_step(hs: float, err: float, facold: float, options) -> float:
     """The next step size after an accepted step of size hs with error err ≤ 1 (facold:
     the previous accepted step's)."""
     return hs * max(FAC_MIN, min(FAC_MAX, step_factor(err, facold, options)))
 
 
-@kernel
+@spliced
 def shrunk_step(hs: float, err: float, options) -> float:
     """The retry step size after a rejected step (err > 1, or ∞ when the step itself
     failed: a stage non-finite or Newton not converging): never longer than hs."""
@@ -88,83 +88,36 @@ def shrunk_step(hs: float, err: float, options) -> float:
     return hs * max(FAC_MIN, min(1.0, step_factor(err, 1.0, options)))
 
 
-# The stubs below are what compiled callers call; their bodies never run.
+def _dispatched(name: str, options_at: int, passes_options: bool):
+    """A compiled function taking the arguments of the method kernel `name` and the options
+    (argument `options_at`), which calls the kernel `name` of the method module of the options
+    with those arguments, the options among them only if `passes_options`. The kernel is
+    resolved when the caller is compiled and called directly: no run-time branch, and no
+    library in between (an `overload` compiles one around each call, which numba then
+    optimises again with the method's code linked into it)."""
+
+    @intrinsic
+    def call(typingctx, *args):
+        # numba hands the arguments over as one tuple (its vararg convention)
+        packed = args[0] if len(args) == 1 and isinstance(args[0], types.StarArgTuple) else None
+        args = tuple(packed.types) if packed else args
+        keep = [i for i in range(len(args)) if passes_options or i != options_at]
+        target = typingctx.resolve_value_type(getattr(_module(args[options_at]), name))
+        signature = typingctx.resolve_function_type(target, tuple(args[i] for i in keep), {})
+
+        def codegen(context, builder, _, values):
+            items = cgutils.unpack_tuple(builder, values[0])
+            return context.get_function(target, signature)(builder, [items[i] for i in keep])
+
+        return signature.return_type(types.StarArgTuple(args)), codegen
+
+    return call
 
 
-def start(sys, work, carry, options) -> None:
-    """The method's `start`."""
-    raise NotImplementedError("compiled code only")
-
-
-@overload(start, jit_options=_JIT)
-def _start(sys, work, carry, options):
-    impl = _module(options).start
-    return lambda sys, work, carry, options: impl(sys, work, carry)
-
-
-def plan(t, h, t_end, buffers, tally, options) -> float:
-    """The method's `plan`."""
-    raise NotImplementedError("compiled code only")
-
-
-@overload(plan, jit_options=_JIT)
-def _plan(t, h, t_end, buffers, tally, options):
-    impl = _module(options).plan
-    return lambda t, h, t_end, buffers, tally, options: impl(t, h, t_end, buffers, tally)
-
-
-def step(sys, work, carry, mem, t, h, y, options, tally):
-    """The method's `step`."""
-    raise NotImplementedError("compiled code only")
-
-
-@overload(step, jit_options=_JIT)
-def _step(sys, work, carry, mem, t, h, y, options, tally):
-    impl = _module(options).step
-    return lambda sys, work, carry, mem, t, h, y, options, tally: impl(
-        sys, work, carry, mem, t, h, y, options, tally
-    )
-
-
-def mark_grazes(sys, work, mem, options) -> None:
-    """The method's `mark_grazes`."""
-    raise NotImplementedError("compiled code only")
-
-
-@overload(mark_grazes, jit_options=_JIT)
-def _mark_grazes(sys, work, mem, options):
-    impl = _module(options).mark_grazes
-    return lambda sys, work, mem, options: impl(sys, work, mem)
-
-
-def accept(sys, work, carry, options) -> None:
-    """The method's `accept`."""
-    raise NotImplementedError("compiled code only")
-
-
-@overload(accept, jit_options=_JIT)
-def _accept(sys, work, carry, options):
-    impl = _module(options).accept
-    return lambda sys, work, carry, options: impl(sys, work, carry)
-
-
-def sample(sys, work, mem, t0, h, time, row, options) -> int:
-    """The method's `sample`."""
-    raise NotImplementedError("compiled code only")
-
-
-@overload(sample, jit_options=_JIT)
-def _sample(sys, work, mem, t0, h, time, row, options):
-    impl = _module(options).sample
-    return lambda sys, work, mem, t0, h, time, row, options: impl(sys, work, mem, t0, h, time, row)
-
-
-def step_factor(err, err_old, options) -> float:
-    """The method's `step_factor`."""
-    raise NotImplementedError("compiled code only")
-
-
-@overload(step_factor, jit_options=_JIT)
-def _step_factor(err, err_old, options):
-    impl = _module(options).step_factor
-    return lambda err, err_old, options: impl(err, err_old)
+start = _dispatched("start", 3, False)  # (sys, work, carry, options)
+plan = _dispatched("plan", 5, False)  # (t, h, t_end, buffers, tally, options)
+step = _dispatched("step", 7, True)  # (sys, work, carry, mem, t, h, y, options, tally)
+mark_grazes = _dispatched("mark_grazes", 3, False)  # (sys, work, mem, options)
+accept = _dispatched("accept", 3, False)  # (sys, work, carry, options)
+sample = _dispatched("sample", 7, False)  # (sys, work, mem, t0, h, time, row, options)
+step_factor = _dispatched("step_factor", 2, False)  # (err, err_old, options)

@@ -28,7 +28,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from sim.jit import kernel, kernel_inline
+from sim.jit import entry, spliced
 from sim.model.clearance import face_switch_energy, gap, gap_depths
 from sim.model.gaps import MEM_GRAZED, MEM_IN_CONTACT, MEM_ONSET_RATE
 from sim.model.system import OUT_PENETRATION
@@ -36,8 +36,8 @@ from sim.solve import methods
 from sim.solve.control import ERR_OLD_MIN, T_ROUNDOFF
 from sim.solve.dae import project_onto_tree, rhs
 from sim.solve.dense import interpolate
-from sim.solve.means import close_windows
-from sim.solve.record import write_fast_values
+from sim.solve.means import close_windows, start_windows
+from sim.solve.record import record_row, write_fast_values
 from sim.solve.status import MAX_STEPS, NONFINITE, OK, PENETRATION, STEP_COLLAPSE, VIOLATION
 
 LOCATE_ITERATIONS = 60
@@ -57,7 +57,7 @@ NO_GAP = np.int64(-1)
 -1 as Literal[int](-1) and compile the kernels it is passed to a second time for it."""
 
 
-@kernel
+@spliced
 def _gap_at(sys, work, g: int, theta: float) -> float:
     """δ of gap g on the continuous extension at fraction θ of the step."""
     n = sys.n
@@ -66,7 +66,7 @@ def _gap_at(sys, work, g: int, theta: float) -> float:
     return delta
 
 
-@kernel
+@spliced
 def _locate(sys, work, g: int, d0: float, d1: float) -> float:
     """Fraction θ ∈ (0, 1] of the step where gap g changes sign (Illinois method,
     Dowell & Jarratt, BIT 11, 1971), from end values d0 and d1 of opposite sign."""
@@ -92,7 +92,7 @@ def _locate(sys, work, g: int, d0: float, d1: float) -> float:
     return b
 
 
-@kernel
+@spliced
 def _first_event(sys, work, mem, y: np.ndarray) -> tuple[int, float]:
     """Earliest gap whose sign disagrees with its flag at the end of the step, and
     the fraction of the step where it crosses (0 when it already disagreed at the
@@ -117,7 +117,7 @@ def _first_event(sys, work, mem, y: np.ndarray) -> tuple[int, float]:
     return best, best_theta
 
 
-@kernel
+@spliced
 def _grazed(sys, work, mem, options) -> bool:
     """True if the motion inside the step penetrated a gap that is apart at both
     ends of the step: a contact the sign test at the step's ends cannot see. The
@@ -132,7 +132,7 @@ def _grazed(sys, work, mem, options) -> bool:
     return False
 
 
-@kernel
+@spliced
 def _flip(sys, mem, g: int, y: np.ndarray) -> None:
     """Toggle the contact flag of gap g at state y; at an onset, remember δ̇⁻.
     A switch between the slider's corner and face laws books its energy jump
@@ -152,7 +152,7 @@ def _flip(sys, mem, g: int, y: np.ndarray) -> None:
         y[2 * n + 1] -= jump
 
 
-@kernel
+@spliced
 def _flip_and_refresh(sys, work, carry, mem, g: int, t: float, y: np.ndarray, rev_events, tally):
     """Apply the event of gap g at (t, y) and re-evaluate the derivative at the
     step's start, which the changed contact state invalidates. The event is booked to
@@ -183,7 +183,7 @@ class EventCheck(NamedTuple):
     flips_at_t: int
 
 
-@kernel_inline
+@spliced
 def event_in_step(sys, work, carry, mem, t, hs, y, forced, flips_at_t, hmin, rev_events, tally):
     """The first contact event inside the step from (t, y) of length hs (s) that passed its
     error test, work holding its end (:class:`EventCheck`). None is looked for in a forced
@@ -202,7 +202,7 @@ def event_in_step(sys, work, carry, mem, t, hs, y, forced, flips_at_t, hmin, rev
     return EventCheck(s, True, 0.0, NO_GAP, flips_at_t + 1)
 
 
-@kernel
+@spliced
 def _raise(row: np.ndarray, first: int, count: int, peaks: np.ndarray, slot: int) -> None:
     """peaks[slot : slot + count] raised to |row[first : first + count]|."""
     for k in range(count):
@@ -211,7 +211,7 @@ def _raise(row: np.ndarray, first: int, count: int, peaks: np.ndarray, slot: int
             peaks[slot + k] = v
 
 
-@kernel
+@spliced
 def update_peaks(row: np.ndarray, cols, slots, nb: int, nj: int, peaks: np.ndarray) -> None:
     """Raise the peaks (max |·|, in their `sim.solve.record.PeakSlots` slots) to the point
     values of a row (blocks at its `RowColumns` cols) of nb bodies and nj clearance joints:
@@ -224,7 +224,7 @@ def update_peaks(row: np.ndarray, cols, slots, nb: int, nj: int, peaks: np.ndarr
     _raise(row, cols.normal_force, nj, peaks, slots.normal_force)
 
 
-@kernel
+@spliced
 def _update_peaks(sys, row: np.ndarray, t: float, buffers, tally) -> None:
     """The run's peaks and those of the revolution holding time t raised to the point values
     of a row taken at t (an accepted step's end, or an output sample)."""
@@ -237,7 +237,7 @@ def _update_peaks(sys, row: np.ndarray, t: float, buffers, tally) -> None:
     update_peaks(row, cols, slots, nb, nj, buffers.rev_peaks[r])
 
 
-@kernel
+@spliced
 def _revolution_row(t_step_end: float, sec_t, tally, rows: int) -> int:
     """Row of `rev_peaks` for an accepted step that ends at t_step_end, called before the
     step's sections are recorded: row r holds revolution r, the steps ending in
@@ -249,7 +249,7 @@ def _revolution_row(t_step_end: float, sec_t, tally, rows: int) -> int:
     return min(r, rows - 1)
 
 
-@kernel
+@spliced
 def _check_state(sys, work, options, tally) -> int:
     """Sanity of the last evaluation: penetration and constraint violation bounds (a tree
     mechanism's constraints hold by construction: it has no residual to check)."""
@@ -267,7 +267,7 @@ def _check_state(sys, work, options, tally) -> int:
     return OK
 
 
-@kernel
+@spliced
 def _sample(sys, work, mem, t0, h, buffers, tally, options) -> int:
     """Record every output sample, then every section, requested in (t0, t0 + h], as
     the method records them (`sample`): point values, which the peaks take; the interval
@@ -290,7 +290,29 @@ def _sample(sys, work, mem, t0, h, buffers, tally, options) -> int:
     return OK
 
 
-@kernel
+@spliced
+def _record_start(sys, work, mem, t: float, y: np.ndarray, buffers, tally) -> int:
+    """Record the run's first sample and section, at its start time t, unless recorded: point
+    values, which start the interval means' first window and the peaks. Returns the
+    evaluation's status."""
+    if tally.outputs > 0:
+        return OK
+    row = buffers.out_rows[0]
+    s = record_row(sys, work, mem, t, y, row)
+    for c in range(row.shape[0]):
+        buffers.sec_rows[0, c] = row[c]
+    start_windows(buffers.means, row)
+    cols = buffers.means.columns
+    nb = sys.ref_idx.shape[0]
+    nj = sys.rj_pts.shape[0] + sys.tj_off.shape[0]
+    update_peaks(row, cols, buffers.peak_slots, nb, nj, buffers.peaks)
+    update_peaks(row, cols, buffers.peak_slots, nb, nj, buffers.rev_peaks[0])
+    tally.outputs = 1
+    tally.sections = 1
+    return s
+
+
+@spliced
 def _log_step(buffers, tally, t: float) -> None:
     """Log the end t of an accepted step for a lockstep follower (`sim.solve.lockstep`), when
     the run keeps a log; the count goes on past the log's size, so an overflow shows."""
@@ -300,14 +322,14 @@ def _log_step(buffers, tally, t: float) -> None:
         tally.logged += 1
 
 
-@kernel
+@spliced
 def _fail(tally, status: int, t: float) -> int:
     """Book a failure at time t; returns its status."""
     tally.failure_time = t
     return status
 
 
-@kernel
+@spliced
 def start_trajectory(sys, work, carry, trajectory, options, tally) -> int:
     """Evaluate the step data carried from (t, y) when the trajectory has none (a fresh or a
     restored one: `clock.started` false): the derivative, the method's start data. Returns
@@ -328,7 +350,7 @@ def start_trajectory(sys, work, carry, trajectory, options, tally) -> int:
     return OK
 
 
-@kernel
+@spliced
 def take_step(sys, work, carry, y: np.ndarray) -> bool:
     """Move the trajectory's state y and carried derivative to the accepted step's end
     (work.ynew, work.ydot_end); False when the new state is not finite."""
@@ -342,7 +364,7 @@ def take_step(sys, work, carry, y: np.ndarray) -> bool:
     return True
 
 
-@kernel
+@entry
 def integrate(sys, work, carry, trajectory, t_end: float, options, buffers, tallies) -> int:
     """Advance the trajectory (`sim.solve.state.Trajectory`) from its clock's t to t_end,
     recording into `buffers` and counting into tallies[0] (`sim.solve.state.TALLY`).
@@ -359,6 +381,9 @@ def integrate(sys, work, carry, trajectory, t_end: float, options, buffers, tall
     t = clock.t
     h = clock.h
     facold = clock.facold
+    s = _record_start(sys, work, mem, t, y, buffers, tally)
+    if s != OK:
+        return _fail(tally, s, t)
     s = start_trajectory(sys, work, carry, trajectory, options, tally)
     if s != OK:
         return _fail(tally, s, t)
