@@ -48,7 +48,13 @@ CASES = {
     "continued": (RIGID, 1.0, "continued"),
     "model-lyapunov": (RIGID, 0.5, "lyapunov"),
 }
-SKIPPED_ATTRS = {"solver_wall_time_s", "solver_compile_time_s", "real_time_factor", "history"}
+SKIPPED_ATTRS = {
+    "solver_wall_time_s",
+    "solver_cpu_time_s",
+    "solver_compile_time_s",
+    "real_time_factor",
+    "history",
+}
 # attributes of result files that name where and with what they were made
 SKIPPED_FILE_ATTRS = {"runs", "library_versions", "source"}
 

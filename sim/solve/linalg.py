@@ -9,10 +9,10 @@ Matrix Computations, 4th ed., algorithm 4.2.1).
 
 import numpy as np
 
-from sim.jit import kernel
+from sim.jit import kernel_inline
 
 
-@kernel
+@kernel_inline
 def cholesky_in_place(a: np.ndarray, m: int, first: np.ndarray) -> bool:
     """Overwrite the leading m×m block of the symmetric matrix `a` with its
     lower Cholesky factor L (a = L Lᵀ). Row i of the block is zero left of
@@ -41,7 +41,7 @@ def cholesky_in_place(a: np.ndarray, m: int, first: np.ndarray) -> bool:
     return True
 
 
-@kernel
+@kernel_inline
 def cholesky_solve_in_place(l: np.ndarray, m: int, b: np.ndarray) -> None:
     """Solve (L Lᵀ) x = b for x, overwriting b; L from `cholesky_in_place`."""
     for i in range(m):
@@ -56,7 +56,7 @@ def cholesky_solve_in_place(l: np.ndarray, m: int, b: np.ndarray) -> None:
         b[i] = s / l[i, i]
 
 
-@kernel
+@kernel_inline
 def lu_in_place(a: np.ndarray, piv: np.ndarray) -> bool:
     """Overwrite the square matrix `a` with its LU factors (unit lower L below the
     diagonal, U on and above), partial pivoting by rows recorded in `piv`
@@ -88,7 +88,7 @@ def lu_in_place(a: np.ndarray, piv: np.ndarray) -> bool:
     return True
 
 
-@kernel
+@kernel_inline
 def lu_solve_in_place(lu: np.ndarray, piv: np.ndarray, b: np.ndarray) -> None:
     """Solve A x = b for x, overwriting b; A's factors from `lu_in_place`."""
     size = lu.shape[0]

@@ -26,7 +26,7 @@ SIMULATION_RULES = {
     "synthesize_recording",
 }
 #: netCDF attributes that record when or how fast, not what, was computed
-CLOCK_ATTRIBUTES = re.compile(r"history|wall|compile_time|real_time_factor")
+CLOCK_ATTRIBUTES = re.compile(r"history|wall|cpu_time|compile_time|real_time_factor")
 
 
 def plan_counts(text: str) -> Counter:
