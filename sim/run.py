@@ -28,7 +28,6 @@ from sim.model.system import (
 from sim.results import build_dataset, decode_rows, energy_balance, energy_error_relative
 from sim.solve import lockstep, stepping
 from sim.solve.control import ERR_OLD_MIN
-from sim.solve.dae import Work, make_work, state_size
 from sim.solve.means import make_means
 from sim.solve.methods import Dopri5, make_carry, method_of
 from sim.solve.record import peak_slots, peak_width, row_width
@@ -42,6 +41,7 @@ from sim.solve.status import (
     STEP_COLLAPSE,
     VIOLATION,
 )
+from sim.solve.work import Work, make_work, state_size
 
 
 class SimulationError(RuntimeError):

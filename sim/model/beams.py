@@ -49,8 +49,9 @@ def beam_gravity_force(rho_a: float, length: float, elements: int, g: np.ndarray
 def beam_forces(sys, q: np.ndarray, qd: np.ndarray, gen: np.ndarray, scratch: np.ndarray):
     """Subtract the elastic forces (and the stiffness-proportional damping forces,
     where a link has a damping coefficient) of every beam and modal link from
-    `gen`; return (dissipated power W, strain energy J)."""
-    p_diss, strain = modal.modal_forces(sys, q, qd, gen)
+    `gen`; return the power they dissipate (W). The strain energy is `strain_energy`'s: only
+    the samples need it, not every evaluation."""
+    p_diss = modal.modal_forces(sys, q, qd, gen)
     for b in range(sys.beam_off.shape[0]):
         o = sys.beam_off[b]
         size = 4 * (sys.beam_nel[b] + 1)
@@ -63,12 +64,28 @@ def beam_forces(sys, q: np.ndarray, qd: np.ndarray, gen: np.ndarray, scratch: np
         ancf.beam_elastic_forces(qb, dshape, axial_w, d2shape, bending_w, out)
         for i in range(size):
             gen[o + i] -= out[i]
-        strain += ancf.beam_strain_energy(qb, dshape, axial_w, d2shape, bending_w)
         if sys.beam[b].damping > 0.0:
             p_diss += _damping_forces(sys, b, q, qd, out)
             for i in range(size):
                 gen[o + i] -= out[i]
-    return p_diss, strain
+    return p_diss
+
+
+@kernel
+def strain_energy(sys, q: np.ndarray) -> float:
+    """The strain energy of every modal link and beam at q (J)."""
+    strain = modal.modal_strain_energy(sys, q)
+    for b in range(sys.beam_off.shape[0]):
+        o = sys.beam_off[b]
+        size = 4 * (sys.beam_nel[b] + 1)
+        strain += ancf.beam_strain_energy(
+            q[o : o + size],
+            sys.beam_dshape[b],
+            sys.beam_axial_w[b],
+            sys.beam_d2shape[b],
+            sys.beam_bending_w[b],
+        )
+    return strain
 
 
 @kernel

@@ -112,9 +112,8 @@ def point_coefficients(
 @kernel_inline
 def modal_forces(sys, q: np.ndarray, qd: np.ndarray, gen: np.ndarray):
     """Subtract the elastic forces ω_k² q_k and damping forces β ω_k² q̇_k of every modal link
-    from `gen`; return (dissipated power W, strain energy J)."""
+    from `gen`; return the power they dissipate (W)."""
     p_diss = 0.0
-    strain = 0.0
     for b in range(sys.md_off.shape[0]):
         first = sys.md_off[b] + 3
         beta = sys.md_beta[b]
@@ -123,9 +122,20 @@ def modal_forces(sys, q: np.ndarray, qd: np.ndarray, gen: np.ndarray):
             i = first + k
             damping = beta * w2 * qd[i]
             gen[i] -= w2 * q[i] + damping
-            strain += 0.5 * w2 * q[i] * q[i]
             p_diss += damping * qd[i]
-    return p_diss, strain
+    return p_diss
+
+
+@kernel_inline
+def modal_strain_energy(sys, q: np.ndarray) -> float:
+    """The strain energy Σ ω_k² q_k² / 2 of every modal link (J, the amplitudes mass-normalised)."""
+    strain = 0.0
+    for b in range(sys.md_off.shape[0]):
+        first = sys.md_off[b] + 3
+        for k in range(sys.md_modes[b]):
+            w2 = sys.md_omega[b, k] * sys.md_omega[b, k]
+            strain += 0.5 * w2 * q[first + k] * q[first + k]
+    return strain
 
 
 @kernel

@@ -60,7 +60,12 @@ from sim.solve.dae import (
     project_velocities,
 )
 from sim.solve.dense import hermite_coefficients, interpolate
-from sim.solve.linalg import lu_in_place, lu_solve_in_place
+from sim.solve.linalg import (
+    lu_in_place,
+    lu_solve_in_place,
+    pattern_lu_in_place,
+    pattern_lu_solve_in_place,
+)
 from sim.solve.means import next_window_end
 from sim.solve.record import write_row
 from sim.solve.state import next_sample
@@ -115,7 +120,8 @@ class Carry(NamedTuple):
     xdd: np.ndarray  # (n,) the method's own q̈_n
     lam: np.ndarray  # (m,) multipliers λ_n
     it_mat: np.ndarray  # (n + m, n + m) Newton iteration matrix, then its LU factors
-    it_piv: np.ndarray  # (n + m,) their pivots
+    it_piv: np.ndarray  # (n + m,) their row exchanges, when pivoted
+    it_pivoted: np.ndarray  # (1,) 1 when the factors are partial pivoting's, else 0
     it_fresh: np.ndarray  # (1,) 1 while the factors are usable, else 0
     acc_new: np.ndarray  # (n,) scratch: a_{n+1} at the step's end
     xdd_new: np.ndarray  # (n,) scratch: the method's own q̈_{n+1}
@@ -132,6 +138,7 @@ def make_carry(n: int, m: int) -> Carry:
         lam=np.zeros(m),
         it_mat=np.zeros((n + m, n + m)),
         it_piv=np.zeros(n + m, dtype=np.int64),
+        it_pivoted=np.zeros(1),
         it_fresh=np.zeros(1),
         acc_new=np.zeros(n),
         xdd_new=np.zeros(n),
@@ -260,6 +267,22 @@ def _residual(sys, work, carry, mem, t, q, v, xdd, lam, bh2, rtol, atol) -> floa
     return np.sqrt(total / (n + m))
 
 
+@spliced
+def _factor(sys, work, carry, mem, t, q, v, am, af, beta, gamma, h) -> bool:
+    """The iteration matrix at (t, q, v) into carry.it_mat and its LU factors: over its
+    pattern of nonzeros without row exchanges (work.newton_lu), or, where a pivot fails
+    there, by partial pivoting of the matrix assembled again (carry.it_pivoted then 1).
+    False when the matrix is singular."""
+    c_m, c_c, c_k = (1.0 - am) / (1.0 - af), gamma * h, beta * h * h
+    iteration_matrix(sys, work, carry.it_mat, mem, t, q, v, c_m, c_c, c_k)
+    carry.it_pivoted[0] = 0.0
+    if pattern_lu_in_place(carry.it_mat, work.newton_lu):
+        return True
+    iteration_matrix(sys, work, carry.it_mat, mem, t, q, v, c_m, c_c, c_k)
+    carry.it_pivoted[0] = 1.0
+    return lu_in_place(carry.it_mat, carry.it_piv)
+
+
 @kernel
 def _newton(sys, work, carry, mem, t, h, y, rtol, atol, rho_inf, factor: bool):
     """Predict the state at t + h, then correct it by simplified Newton with the
@@ -310,15 +333,15 @@ def _newton(sys, work, carry, mem, t, h, y, rtol, atol, rho_inf, factor: bool):
             refresh = True
         previous = size
         if refresh:
-            iteration_matrix(
-                sys, work, carry.it_mat, mem, tn, q, v, (1.0 - am) / (1.0 - af), gamma * h, bh2
-            )
             matrices += 1
             carry.it_fresh[0] = 1.0
-            if not lu_in_place(carry.it_mat, carry.it_piv):
+            if not _factor(sys, work, carry, mem, tn, q, v, am, af, beta, gamma, h):
                 carry.it_fresh[0] = 0.0
                 return SINGULAR, False, it + 1, matrices, it
-        lu_solve_in_place(carry.it_mat, carry.it_piv, x)
+        if carry.it_pivoted[0] > 0.0:
+            lu_solve_in_place(carry.it_mat, carry.it_piv, x)
+        else:
+            pattern_lu_solve_in_place(carry.it_mat, work.newton_lu, x)
         for i in range(n):
             q[i] += x[i]
             v[i] += v_per_q * x[i]

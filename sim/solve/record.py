@@ -16,6 +16,7 @@ import numpy as np
 
 from sim.jit import kernel
 from sim.model import ancf
+from sim.model.beams import strain_energy
 from sim.model.clearance import eccentricity, eccentricity_rate, guide_frame
 from sim.model.constraints import constraint_terms
 from sim.model.modal import modal_midspan_deflection
@@ -29,7 +30,6 @@ from sim.quantities import BY_NAME, PEAK, SAMPLE, recorded, shape
 from sim.solve.dae import (
     SC_CONTACT_ENERGY,
     SC_DRIVE_TORQUE,
-    SC_STRAIN_ENERGY,
     kinetic_energy,
     potential_energy,
     rhs,
@@ -317,7 +317,7 @@ def write_row(sys, work, y: np.ndarray, row: np.ndarray) -> None:
     row[c] = np.sqrt(viol)
     row[c + 1] = kinetic_energy(sys, work, qd)  # kinetic_energy
     row[c + 2] = potential_energy(sys, q)  # potential_energy
-    row[c + 3] = work.scalars[SC_STRAIN_ENERGY]  # strain_energy
+    row[c + 3] = strain_energy(sys, q)  # strain_energy
     row[c + 4] = work.scalars[SC_CONTACT_ENERGY]  # contact_energy
     row[c + 5] = y[2 * n]  # drive_work
     row[c + 6] = y[2 * n + 1]  # dissipated_energy

@@ -6,7 +6,7 @@
 - the carry, each method's own (`sim.solve.dopri.Carry`, `sim.solve.galpha.Carry`, made by
   `sim.solve.methods.make_carry`): what one step hands to the next besides the trajectory
   and can be recomputed from it (the derivative at the step's start, the generalized-α start
-  data) or kept as an economy (the Newton factors); `sim.solve.dae.Work` is pure scratch.
+  data) or kept as an economy (the Newton factors); `sim.solve.work.Work` is pure scratch.
 - `Buffers`: the requested output times and the rows, sections and peaks recorded, and the
   log of accepted step ends a lockstep follower takes (`sim.solve.lockstep`).
 - `TALLY`: counters of the run and the details of a failure.

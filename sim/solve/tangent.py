@@ -20,7 +20,7 @@ The constraint Jacobian Φ_q is read from work.jac, evaluated at the same state.
 
 import numpy as np
 
-from sim.jit import kernel
+from sim.jit import kernel, kernel_inline
 from sim.model import ancf, modal
 from sim.solve.dae import contact_forces
 
@@ -32,11 +32,39 @@ FD_STEP_QD = 1e-8
 tolerance v0 = 1e-4 m/s over which the friction coefficient ramps."""
 
 
+def iteration_pattern(
+    system, col_block: np.ndarray, jac_cols: np.ndarray, jac_ncols: np.ndarray, contact_coords
+) -> np.ndarray:
+    """Where `iteration_matrix` can write a nonzero, (n + m) × (n + m) bool: within each
+    mass block (the mass matrix, a beam's tangents, a modal link's diagonal), between every
+    two coordinates the contact forces depend on, and where Φ_q and Φ_qᵀ can be nonzero
+    (`jac_cols`, `jac_ncols`: the columns of each row of Φ_q)."""
+    n, m = system.n, system.m
+    nonzero = np.zeros((n + m, n + m), dtype=bool)
+    nonzero[:n, :n] = col_block[:, None] == col_block[None, :]
+    nonzero[np.ix_(contact_coords, contact_coords)] = True
+    for r in range(m):
+        cols = jac_cols[r, : jac_ncols[r]]
+        nonzero[n + r, cols] = True
+        nonzero[cols, n + r] = True
+    return nonzero
+
+
+@kernel_inline
+def _contact_force_acts(sys, work, mem, q: np.ndarray, qd: np.ndarray) -> bool:
+    """The clearance contact forces at (q, q̇) into work.fd_base; whether any is nonzero."""
+    contact_forces(sys, work, q, qd, mem, work.fd_base)
+    for i in work.contact_coords:
+        if work.fd_base[i] != 0.0:
+            return True
+    return False
+
+
 @kernel
 def _add_contact_tangent(sys, work, mat, mem, q, qd, x: np.ndarray, step: float, coef: float):
-    """mat[i, c] −= coef ∂Q_i/∂x_c for the contact coordinates, x being q or q̇."""
+    """mat[i, c] −= coef ∂Q_i/∂x_c for the contact coordinates, x being q or q̇, the contact
+    forces at (q, q̇) in work.fd_base."""
     coords = work.contact_coords
-    contact_forces(sys, work, q, qd, mem, work.fd_base)
     for a in range(coords.shape[0]):
         c = coords[a]
         saved = x[c]
@@ -101,7 +129,10 @@ def iteration_matrix(
                 mat[i, k] = c_m * sys.mass[i, k]
     _add_beam_tangent(sys, work, mat, q, qd, c_c, c_k)
     modal.add_modal_tangent(sys, mat, c_c, c_k)
-    if work.contact_coords.shape[0] > 0:
+    # without a contact force no clearance contact is closed (or within FD_STEP_Q of closing,
+    # whose tangent, c_K times a Hertz stiffness at 1e-10 m, is 1e-5 of the inertia's): its
+    # tangent is zero, and the 2 × contact-coordinates evaluations of the differences are saved
+    if work.contact_coords.shape[0] > 0 and _contact_force_acts(sys, work, mem, q, qd):
         _add_contact_tangent(sys, work, mat, mem, q, qd, q, FD_STEP_Q, c_k)
         _add_contact_tangent(sys, work, mat, mem, q, qd, qd, FD_STEP_QD, c_c)
     for r in range(m):

@@ -29,9 +29,9 @@ from sim.model.gaps import contact_memory
 from sim.run import prepare, simulate, solver_options
 from sim.scene import load_scene
 from sim.solve import lockstep
-from sim.solve.dae import make_work, state_size
 from sim.solve.methods import implementation, make_carry
 from sim.solve.state import TALLY
+from sim.solve.work import make_work, state_size
 
 #: the run that compiles a method's kernels: the six-bar with clearance in A and B and
 #: two-element beams, long enough for its first contact events

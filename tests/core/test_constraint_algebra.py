@@ -13,7 +13,8 @@ import pytest
 from sim.model.assembly import build_system
 from sim.model.constraints import constraint_terms
 from sim.scene import load_scene
-from sim.solve.dae import OK, factor_schur, make_work
+from sim.solve.dae import OK, factor_schur
+from sim.solve.work import make_work
 
 CASES = {
     "rigid": ["joints.A.clearance=0.5e-3", "joints.B.clearance=0.5e-3"],
