@@ -269,7 +269,13 @@ def prepare(
         # one row per revolution (ending at each section), one more for what follows the last
         rev_peaks=np.zeros((sec_t.size + 1, n_peaks)),
         rev_events=np.zeros(sec_t.size + 1, dtype=np.int64),
-        means=make_means(width, n_bodies, n_joints, windows=sampling == "mean"),
+        means=make_means(
+            width,
+            n_bodies,
+            n_joints,
+            windows=sampling == "mean",
+            balance=not isinstance(options.method, Dopri5),
+        ),
         step_ends=np.zeros(step_log),
     )
     tally = np.zeros(1, dtype=TALLY)

@@ -14,7 +14,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from sim.jit import kernel
+from sim.jit import kernel, kernel_inline
 from sim.model import ancf
 from sim.model.beams import strain_energy
 from sim.model.clearance import eccentricity, eccentricity_rate, guide_frame
@@ -219,6 +219,19 @@ def write_fast_values(sys, work, y: np.ndarray, cols, row: np.ndarray) -> None:
     row[cols.drive_torque] = work.scalars[SC_DRIVE_TORQUE]
     _joint_output(work, OUT_NORMAL_FORCE, row, cols.normal_force)
     _joint_output(work, OUT_FRICTION_FORCE, row, cols.friction_force)
+
+
+@kernel_inline
+def balance_work(sys, work, y: np.ndarray) -> float:
+    """The drive work that the energy balance gives at the state y whose evaluation work
+    holds (J): T + V + U_s + U_c + D, the stored energies and what contact, friction and
+    damping dissipated, which differs from the drive's work W by a constant (the energy at
+    the start) and the integration error. Its change over a window is the work the drive did
+    there, as the mechanism's state measures it (`sim.solve.means`)."""
+    n = sys.n
+    q = y[:n]
+    stored = kinetic_energy(sys, work, y[n : 2 * n]) + potential_energy(sys, q)
+    return stored + strain_energy(sys, q) + work.scalars[SC_CONTACT_ENERGY] + y[2 * n + 1]
 
 
 @kernel

@@ -301,7 +301,7 @@ def _record_start(sys, work, mem, t: float, y: np.ndarray, buffers, tally) -> in
     s = record_row(sys, work, mem, t, y, row)
     for c in range(row.shape[0]):
         buffers.sec_rows[0, c] = row[c]
-    start_windows(buffers.means, row)
+    start_windows(sys, work, buffers.means, y, row)
     cols = buffers.means.columns
     nb = sys.ref_idx.shape[0]
     nj = sys.rj_pts.shape[0] + sys.tj_off.shape[0]
