@@ -107,6 +107,23 @@ QUANTITIES = (
         INTERVAL_MEAN,
     ),
     Quantity(
+        "output_position",
+        ("time", "axis"),
+        "m",
+        "position of the output point (the scene's `output`: a point of a body)",
+        SAMPLE,
+    ),
+    Quantity("output_velocity", ("time", "axis"), "m s-1", "velocity of the output point", SAMPLE),
+    Quantity(
+        "output_acceleration",
+        ("time", "axis"),
+        "m s-2",
+        "acceleration of the output point",
+        SAMPLE,
+        "output_velocity",
+        INTERVAL_MEAN,
+    ),
+    Quantity(
         "angle",
         ("time", "body"),
         "rad",
@@ -257,6 +274,14 @@ QUANTITIES = (
         "acceleration",
     ),
     Quantity(
+        "peak_output_acceleration",
+        ("axis",),
+        "m s-2",
+        f"largest |acceleration| of the output point {_PEAK}",
+        PEAK,
+        "output_acceleration",
+    ),
+    Quantity(
         "peak_angular_velocity",
         ("body",),
         "rad s-1",
@@ -302,6 +327,14 @@ QUANTITIES = (
         f"largest |acceleration| {_REVOLUTION}",
         REVOLUTION_PEAK,
         "acceleration",
+    ),
+    Quantity(
+        "revolution_peak_output_acceleration",
+        ("revolution", "axis"),
+        "m s-2",
+        f"largest |acceleration| of the output point {_REVOLUTION}",
+        REVOLUTION_PEAK,
+        "output_acceleration",
     ),
     Quantity(
         "revolution_peak_angular_velocity",

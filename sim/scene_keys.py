@@ -32,7 +32,7 @@ class Field:
     accepts null, meaning "computed from the rest of the scene" (`doc` says how). `doc`
     says what the key means, for the reference page (docs/scenes.md, `sim.scene_reference`)."""
 
-    kind: str  # 'number', 'int', 'str', 'bool', 'vector2', 'vector3', 'list', 'mapping'
+    kind: str  # 'number', 'int', 'str', 'bool', 'vector2', 'vector3', 'point', 'list', 'mapping'
     minimum: float | None = None
     maximum: float | None = None
     open_min: bool = False
@@ -413,11 +413,12 @@ SOLVER = {
 OUTPUT = {
     "body": Field("str", doc="the body whose motion the analyses read"),
     "point": _opt(
-        "str",
+        "point",
         "centre",
-        "its point: the reference point, whose position, velocity and acceleration every run "
-        "records",
-        choices=("centre",),
+        "its point whose position, velocity and acceleration the run records as "
+        "`output_position`, `output_velocity` and `output_acceleration`: a named point of the "
+        "body (`centre`, a bar's `start` and `end`, its own `points`; a beam's `start`, "
+        "`centre`, `end`) or [x, y] in the body's frame (m; rigid bodies and modal links)",
     ),
     "axis": _opt("str", "y", "the global component read", choices=("x", "y")),
 }
@@ -451,6 +452,8 @@ def describe(field: Field) -> str:
     lo = "" if field.minimum is None else f"{field.minimum:g} {'<' if field.open_min else '≤'} "
     hi = "" if field.maximum is None else f" ≤ {field.maximum:g}"
     unit = f" ({field.unit})" if field.unit else ""
+    if field.kind == "point":
+        return "a point's name or [x, y] in the body's frame (m)"
     kind = {"vector2": "a list of 2 numbers", "vector3": "a list of 3 numbers"}.get(field.kind)
     if kind:
         return f"{kind}, each {lo}x{hi}{unit}" if (lo or hi) else kind + unit
@@ -486,6 +489,8 @@ def check_value(value: Any, field: Field) -> bool:
             and len(value) == size
             and all(_check_number(v, field) for v in value)
         )
+    if field.kind == "point":
+        return isinstance(value, str) or check_value(value, replace(field, kind="vector2"))
     if field.kind == "list":
         return isinstance(value, list)
     return isinstance(value, dict)

@@ -25,7 +25,7 @@ from sim.model.system import (
     System,
 )
 from sim.model.tree import spanning_tree
-from sim.scene import GROUND
+from sim.scene import GROUND, output_channel
 
 
 class AssemblyError(RuntimeError):
@@ -113,6 +113,9 @@ def build_system(scene: dict, *, ideal: bool = False, rigid: bool = False) -> tu
         _add_joint(builder, scene, name, joint, ideal)
     d = scene["drive"]
     builder.add_drive(d["body"], math.radians(d["initial_angle_deg"]), omega(scene))
+    if scene.get("output") or "slider" in scene["bodies"]:  # else: the first body's centre
+        channel = output_channel(scene)
+        builder.set_output(channel.body, channel.point, "output.point")
     system, layout = builder.freeze()
     solver = scene["solver"]
     if solver["coordinates"] == "minimal" and solver["method"] == "dopri5":

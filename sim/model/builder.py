@@ -99,6 +99,8 @@ class SystemBuilder:
         self._rj: list[tuple[str, tuple[int, int], tuple[float, ...]]] = []
         self._tj: list[tuple[str, int, tuple[float, ...]]] = []
         self._drive = (-1, -1)
+        # (point, body) of the output point (`set_output`); by default the first body's centre
+        self._output = (-1, 0)
         self._n = 0
 
     # Bodies ------------------------------------------------------------------------
@@ -195,9 +197,11 @@ class SystemBuilder:
 
     # Points and joints ---------------------------------------------------------------
 
-    def add_point(self, body: str, name: str, where: str) -> int:
-        """Index of point `name` of `body` (or of the ground), added on first use."""
-        key = (body, name)
+    def add_point(self, body: str, name: str | list[float], where: str) -> int:
+        """Index of point `name` of `body` (or of the ground), added on first use; `name`
+        may also be [x, y] in the frame of a rigid body or modal link (m)."""
+        named = isinstance(name, str)
+        key = (body, name if named else tuple(name))
         if key in self._points:
             return self._points[key]
         coeff = np.zeros((2, modal.MAX_MODES))
@@ -213,11 +217,11 @@ class SystemBuilder:
                 node = b.offset + (0 if name == "start" else 4 * b.elements)
                 point = (POINT_NODE, node, (0.0, 0.0), 0, coeff)
             else:
-                if name not in b.points:
+                if named and name not in b.points:
                     raise SceneError(
                         f"{where}: body {body!r} has no point {name!r}; known: {sorted(b.points)}"
                     )
-                u = b.points[name]
+                u = b.points[name] if named else (float(name[0]), float(name[1]))
                 if b.modes:
                     bending = b.modes - b.axial
                     coeff = modal.point_coefficients(u, b.length, b.rho_a, bending, b.axial)
@@ -226,6 +230,18 @@ class SystemBuilder:
         self._points[key] = len(self._pt)
         self._pt.append(point)
         return self._points[key]
+
+    def set_output(self, body: str, point: str | list[float], where: str) -> None:
+        """The output point: `point` of `body` (`add_point`), or its reference point for
+        `centre` (a beam's mid-span, a rigid body's or modal link's frame origin)."""
+        b = self.body(body, where)
+        index = list(self._bodies).index(body)
+        if point == "centre":
+            self._output = (-1, index)
+        elif b.elements and point not in ("start", "end"):
+            raise SceneError(f"{where}: beam {body!r} offers 'start', 'centre' and 'end' only")
+        else:
+            self._output = (self.add_point(body, point, where), index)
 
     def add_constraint(self, owner: str, kind: int, ints: tuple = (), floats: tuple = ()) -> None:
         """An ideal constraint of type `kind` (CON_* of sim.model.system) with its integer
@@ -350,6 +366,8 @@ class SystemBuilder:
                 [int(b.elements > 0) for b in self._bodies.values()], dtype=np.int64
             ),
             body_modal=_modal_index(self._bodies.values()),
+            out_pt=self._output[0],
+            out_body=self._output[1],
             tree=np.zeros(0, dtype=HINGE),
         )
         layout = Layout(

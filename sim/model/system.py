@@ -146,6 +146,8 @@ class System(NamedTuple):
     ang_idx: np.ndarray  # (nbody, 2) angle coordinate (rigid) or chord nodes (beam)
     body_is_beam: np.ndarray  # (nbody,) 1 for beams
     body_modal: np.ndarray  # (nbody,) index of the modal link (md_*), −1 for other bodies
+    out_pt: int  # the output point (the scene's `output`), −1: body out_body's reference point
+    out_body: int  # the body the output point belongs to
     tree: np.ndarray  # (hinges,) sim.model.tree.HINGE: minimal coordinates, empty if unused
 
 

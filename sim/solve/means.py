@@ -89,7 +89,7 @@ def make_means(
 
     # the kernels write exactly these blocks (sim.solve.record.write_fast_values and
     # write_rate_sources): a new interval mean needs its lines there
-    sources = {"velocity", "angular_velocity", "drive_work", "crank_angle"}
+    sources = {"velocity", "output_velocity", "angular_velocity", "drive_work", "crank_angle"}
     fast = {"deflection", "normal_force", "friction_force"}
     assert {q.source for q in formed} | {q.per for q in formed if q.per} <= sources
     assert {q.name for q in quadrature} <= fast

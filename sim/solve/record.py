@@ -19,6 +19,7 @@ from sim.model import ancf
 from sim.model.beams import strain_energy
 from sim.model.clearance import eccentricity, eccentricity_rate, guide_frame
 from sim.model.constraints import constraint_terms
+from sim.model.kinematics import point_position, point_quadratic_acceleration, point_velocity
 from sim.model.modal import modal_midspan_deflection
 from sim.model.system import (
     OUT_FRICTION_FORCE,
@@ -86,6 +87,8 @@ class RowColumns(NamedTuple):
     crank_angle: int
     velocity: int
     acceleration: int
+    output_velocity: int
+    output_acceleration: int
     angular_velocity: int
     angular_acceleration: int
     deflection: int
@@ -107,6 +110,7 @@ class PeakSlots(NamedTuple):
     peak of each sampled quantity (`peak_layout`), named by that quantity."""
 
     acceleration: int
+    output_acceleration: int
     angular_velocity: int
     angular_acceleration: int
     drive_torque: int
@@ -132,6 +136,34 @@ def reference_point(sys, b: int, x: np.ndarray, axis: int) -> float:
     for k in range(4):
         acc += sys.ref_coef[b, k] * x[sys.ref_idx[b, k] + axis]
     return acc
+
+
+@kernel_inline
+def output_position(sys, q: np.ndarray) -> tuple[float, float]:
+    """Global position (m) of the output point: point System.out_pt, or, for −1, the
+    reference point of body System.out_body."""
+    if sys.out_pt < 0:
+        return reference_point(sys, sys.out_body, q, 0), reference_point(sys, sys.out_body, q, 1)
+    return point_position(sys, sys.out_pt, q)
+
+
+@kernel_inline
+def output_velocity(sys, q: np.ndarray, qd: np.ndarray) -> tuple[float, float]:
+    """Global velocity (m/s) of the output point: the linear map J(q) of the rates q̇."""
+    if sys.out_pt < 0:
+        return reference_point(sys, sys.out_body, qd, 0), reference_point(sys, sys.out_body, qd, 1)
+    return point_velocity(sys, sys.out_pt, q, qd, 0.0, 0.0)
+
+
+@kernel_inline
+def output_acceleration(sys, q, qd, qdd) -> tuple[float, float]:
+    """Global acceleration (m/s²) of the output point: J(q) q̈ (the velocity's map applied
+    to the accelerations) plus the terms quadratic in q̇."""
+    jx, jy = output_velocity(sys, q, qdd)
+    if sys.out_pt < 0:
+        return jx, jy  # a reference point is linear in q: no quadratic terms
+    bx, by = point_quadratic_acceleration(sys, sys.out_pt, q, qd)
+    return jx + bx, jy + by
 
 
 @kernel
@@ -205,12 +237,15 @@ def crank_angle(sys, q: np.ndarray) -> float:
 def write_fast_values(sys, work, y: np.ndarray, cols, row: np.ndarray) -> None:
     """Into row's blocks (`RowColumns` cols): the point values at the state y that work was
     evaluated at of the quantities whose peaks are kept or whose interval means are a
-    quadrature over the steps: accelerations, angular velocities and accelerations,
-    deflections, drive torque, contact normal and friction forces."""
+    quadrature over the steps: accelerations (the output point's too), angular velocities and
+    accelerations, deflections, drive torque, contact normal and friction forces."""
     n = sys.n
     q = y[:n]
     qd = y[n : 2 * n]
     _reference_points(sys, work.qdd, row, cols.acceleration)
+    ax, ay = output_acceleration(sys, q, qd, work.qdd)
+    row[cols.output_acceleration] = ax
+    row[cols.output_acceleration + 1] = ay
     for b in range(sys.ref_idx.shape[0]):
         _, rate, acc = body_angle_rates(sys, b, q, qd, work.qdd)
         row[cols.angular_velocity + b] = rate
@@ -238,11 +273,15 @@ def balance_work(sys, work, y: np.ndarray) -> float:
 def write_rate_sources(sys, y: np.ndarray, cols, row: np.ndarray) -> None:
     """Into row's blocks (`RowColumns` cols): the state quantities whose differences form
     interval means (`sim.quantities`' `source` and `per`), at the state y: reference-point
-    velocities, angular velocities, drive work and crank angle. No evaluation needed."""
+    and output-point velocities, angular velocities, drive work and crank angle. No
+    evaluation needed."""
     n = sys.n
     q = y[:n]
     qd = y[n : 2 * n]
     _reference_points(sys, qd, row, cols.velocity)
+    vx, vy = output_velocity(sys, q, qd)
+    row[cols.output_velocity] = vx
+    row[cols.output_velocity + 1] = vy
     for b in range(sys.ref_idx.shape[0]):
         _, rate, _ = body_angle_rates(sys, b, q, qd, qd)
         row[cols.angular_velocity + b] = rate
@@ -283,6 +322,11 @@ def write_row(sys, work, y: np.ndarray, row: np.ndarray) -> None:
     _reference_points(sys, qd, row, c + 2 * nb)
     _reference_points(sys, work.qdd, row, c + 4 * nb)
     c += 6 * nb
+    # output_position, output_velocity, output_acceleration
+    row[c], row[c + 1] = output_position(sys, q)
+    row[c + 2], row[c + 3] = output_velocity(sys, q, qd)
+    row[c + 4], row[c + 5] = output_acceleration(sys, q, qd, work.qdd)
+    c += 6
     # angle, angular_velocity, angular_acceleration
     for b in range(nb):
         angle, rate, acc = body_angle_rates(sys, b, q, qd, work.qdd)

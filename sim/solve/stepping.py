@@ -215,9 +215,10 @@ def _raise(row: np.ndarray, first: int, count: int, peaks: np.ndarray, slot: int
 def update_peaks(row: np.ndarray, cols, slots, nb: int, nj: int, peaks: np.ndarray) -> None:
     """Raise the peaks (max |·|, in their `sim.solve.record.PeakSlots` slots) to the point
     values of a row (blocks at its `RowColumns` cols) of nb bodies and nj clearance joints:
-    reference-point accelerations, angular velocities and accelerations, drive torque and
-    contact normal forces."""
+    reference-point and output-point accelerations, angular velocities and accelerations,
+    drive torque and contact normal forces."""
     _raise(row, cols.acceleration, 2 * nb, peaks, slots.acceleration)
+    _raise(row, cols.output_acceleration, 2, peaks, slots.output_acceleration)
     _raise(row, cols.angular_velocity, nb, peaks, slots.angular_velocity)
     _raise(row, cols.angular_acceleration, nb, peaks, slots.angular_acceleration)
     _raise(row, cols.drive_torque, 1, peaks, slots.drive_torque)

@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from sim.analysis.revolutions import SLIDER_ACCELERATION, revolution_table
+from sim.model.assembly import build_system
 from sim.run import simulate
 from sim.scene import SceneError, load_scene, output_channel, parse_yaml
 from sim.scene_keys import CONTACT, SIMULATION, SOLVER
@@ -124,6 +125,47 @@ def test_the_rocker_angular_velocity_and_acceleration_follow_the_closed_form(tmp
         recorded_a = ds.angular_acceleration.sel(body=body).values
         assert np.abs(recorded_w - w).max() < 1e-4 * np.abs(w).max(), body
         assert np.abs(recorded_a - a).max() < 1e-4 * np.abs(a).max(), body
+
+
+@pytest.mark.parametrize("point", ["end", [0.1, 0.02]], ids=["named", "body-frame"])
+def test_the_output_point_follows_the_closed_form(tmp_path, point):
+    # The rocker's end, or a point given in its frame, as the output point: its recorded
+    # position, velocity and acceleration (point samples) against the rocker's rigid motion
+    # about its ground pivot C at the closed-form rates (`loop_rates`) of the recorded angles:
+    # r = C + A(θ4) (u + (c/2, 0)), v = ω4 k × (r − C), a = α4 k × (r − C) − ω4² (r − C).
+    # Margin 1e-4 of each peak, as for the rates above.
+    path = tmp_path / "my-fourbar.yaml"
+    path.write_text(MINIMAL + f"output: {{body: rocker, point: {point}, axis: y}}\n")
+    scene = load_scene(str(path), ["simulation.sampling=point"])
+    ds = simulate(scene, ideal=True, rigid=True, revolutions=1.0)
+    theta2 = ds.crank_angle.values.astype(float)
+    theta3, theta4 = (ds.angle.sel(body=b).values.astype(float) for b in ("coupler", "rocker"))
+    _, w4, _, a4 = loop_rates(theta2, theta3, theta4, 2.0 * np.pi * 120.0 / 60.0)
+    u = (C / 2.0, 0.0) if point == "end" else point
+    ux, uy = u[0] + C / 2.0, u[1]  # from the pivot C, the rocker's start
+    rx = np.cos(theta4) * ux - np.sin(theta4) * uy
+    ry = np.sin(theta4) * ux + np.cos(theta4) * uy
+    expected = {
+        "output_position": (D + rx, ry),
+        "output_velocity": (-w4 * ry, w4 * rx),
+        "output_acceleration": (-a4 * ry - w4**2 * rx, a4 * rx - w4**2 * ry),
+    }
+    for name, (x, y) in expected.items():
+        for axis, value in (("x", x), ("y", y)):
+            recorded = ds[name].sel(axis=axis).values
+            scale = max(np.abs(x).max(), np.abs(y).max())
+            assert np.abs(recorded - value).max() < 1e-4 * scale, (name, axis)
+
+
+def test_an_output_point_the_body_lacks_is_refused_with_the_points_it_has():
+
+    with pytest.raises(
+        SceneError, match=re.escape("output.point: body 'rocker' has no point 'tip'")
+    ):
+        build_system(load_scene("fourbar", ["output.point=tip"]))
+    beam = load_scene("fourbar", ["bodies.rocker.kind=beam", "output.point=[0.1, 0.0]"])
+    with pytest.raises(SceneError, match="offers 'start', 'centre' and 'end' only"):
+        build_system(beam)
 
 
 def test_the_analyses_read_the_scenes_output_channel():
