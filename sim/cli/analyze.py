@@ -15,6 +15,8 @@ from sim.scene_keys import Field, check_option
 DEFAULT_TRANSIENT_REVOLUTIONS = 20
 #: what --transient accepts (crank revolutions)
 TRANSIENT = Field("int", 0, unit="revolutions")
+#: the variables of a model exponent (sim.studies.model_lyapunov.model_lyapunov_dataset)
+MODEL_VARIABLES = ("model_lyapunov_exponent", "model_lyapunov_stderr")
 
 
 def default_transient(n_revolutions: int) -> int:
@@ -47,13 +49,40 @@ def _check_length(run: xr.Dataset, transient: int | None) -> None:
         )
 
 
+def _value(number: float, spec: str) -> str:
+    """A number as the table prints it; a dash where it could not be estimated."""
+    return "–" if np.isnan(number) else format(number, spec)
+
+
+def exponent_line(analysis: xr.Dataset) -> str | None:
+    """The model exponent of an analysis with its standard error and settings, one line; None
+    when the analysis has none."""
+    if "model_lyapunov_exponent" not in analysis:
+        return None
+    a = analysis.attrs
+    settings = ", ".join(
+        f"{name} {a[key]:g}"
+        for name, key in (("rtol", "model_lyapunov_rtol"), ("d0", "model_lyapunov_d0"))
+        if key in a
+    )
+    links = a.get("model_lyapunov_links")
+    on = f" on {links} links" if links in ("rigid", "modal") else ""
+    return (
+        f"model exponent {float(analysis.model_lyapunov_exponent):.3g} ± "
+        f"{float(analysis.model_lyapunov_stderr):.2g} 1/s (Benettin on the linkage's own "
+        f"equations{on}{', ' + settings if settings else ''}): the first chaos vote of every "
+        "channel"
+    )
+
+
 def verdict_table(analysis: xr.Dataset) -> str:
-    """The verdict of every channel, one line each, with its largest Lyapunov exponent."""
-    lines = [f"{'channel':<14} {'verdict':<16} {'λ (1/s)':>10}  reason"]
+    """The verdict of every channel, one line each, with its series exponent (Rosenstein, 1/s)
+    and the reason, which names every indicator read."""
+    lines = [f"{'channel':<14} {'verdict':<16} {'series λ (1/s)':>14}  reason"]
     for i, channel in enumerate(analysis["channel"].values):
         lines.append(
             f"{channel!s:<14} {analysis['verdict'].values[i]!s:<16} "
-            f"{float(analysis['lyapunov_exponent'].values[i]):>10.3g}  "
+            f"{_value(float(analysis['lyapunov_exponent'].values[i]), '.3g'):>14}  "
             f"{analysis['verdict_reason'].values[i]}"
         )
     return "\n".join(lines)
@@ -81,12 +110,23 @@ def register(subparsers: argparse._SubParsersAction) -> argparse.ArgumentParser:
             "or a quarter of the run, whichever is smaller)"
         ),
     )
-    parser.add_argument(
+    model = parser.add_mutually_exclusive_group()
+    model.add_argument(
         "--model-lyapunov",
         action="store_true",
         help=(
             "also compute the largest Lyapunov exponent of the model (Benettin: the run's scene "
-            "integrated again beside a perturbed copy; costs about two runs)"
+            "integrated again beside a perturbed copy; costs about two runs); the verdicts "
+            "read it first"
+        ),
+    )
+    model.add_argument(
+        "--model-exponent",
+        type=Path,
+        metavar="FILE",
+        help=(
+            "take the model exponent from FILE instead (an analysis made with "
+            "--model-lyapunov, or the workflow's model-exponent file of the run)"
         ),
     )
     parser.set_defaults(func=analyze_command)
@@ -114,6 +154,23 @@ def _model_lyapunov(run: xr.Dataset, transient: int) -> xr.Dataset:
     return model_lyapunov_dataset(result, exponent_tolerances(scene))
 
 
+def _exponent_file(path: Path) -> xr.Dataset:
+    """The model exponent of a file holding one (`model_lyapunov_dataset`'s variables);
+    ValueError naming the file and the variable when it holds none."""
+    from sim.results import open_run
+
+    ds = open_run(path)
+    missing = [name for name in MODEL_VARIABLES if name not in ds]
+    if missing:
+        raise ValueError(
+            f"{path}: no variable {missing[0]!r}: give a file written by `sim analyze "
+            "--model-lyapunov` or the workflow's rule model_exponent"
+        )
+    return ds[list(MODEL_VARIABLES)].assign_attrs(
+        {k: v for k, v in ds.attrs.items() if k.startswith("model_lyapunov_")}
+    )
+
+
 def analyze_command(args: argparse.Namespace) -> int:
     """Handler of ``sim analyze``; returns the exit code."""
     from sim.results import open_run, write_netcdf
@@ -124,6 +181,7 @@ def analyze_command(args: argparse.Namespace) -> int:
         check_option("--transient", args.transient, TRANSIENT)
     check_output("--output", args.output)
     run = open_run(args.run)
+    model = _exponent_file(args.model_exponent) if args.model_exponent else None
     try:
         _check_length(run, args.transient)
         transient = (
@@ -131,15 +189,27 @@ def analyze_command(args: argparse.Namespace) -> int:
             if args.transient is None
             else args.transient
         )
-        analysis = analyze_run(run, transient_revolutions=transient)
         if args.model_lyapunov:
             model = _model_lyapunov(run, transient)
+        exponent = (
+            {}
+            if model is None
+            else {
+                "model_exponent": float(model.model_lyapunov_exponent),
+                "model_stderr": float(model.model_lyapunov_stderr),
+            }
+        )
+        analysis = analyze_run(run, transient_revolutions=transient, **exponent)
+        if model is not None:
             analysis = analysis.merge(model, combine_attrs="no_conflicts")
     except (OSError, ValueError, SimulationError) as error:
         print(f"sim analyze: {args.run}: {error}", file=sys.stderr)
         return 1
     write_netcdf(analysis, args.output)  # atomic: a crash leaves no partial file
     print(f"{args.output}: {run.sizes['revolution'] - 1} revolutions, {transient} dropped")
+    line = exponent_line(analysis)
+    if line:
+        print(line)
     print(verdict_table(analysis))
     return 0
 

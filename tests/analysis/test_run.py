@@ -10,6 +10,7 @@ from conftest import SAMPLES_PER_REVOLUTION, run_dataset
 
 from sim.analysis.bifurcation import combine_sweep
 from sim.analysis.run import analyze_run
+from sim.cli import main
 from sim.cli.analyze import register
 from sim.studies.model_lyapunov import DEFAULT_TOLERANCES
 
@@ -132,7 +133,7 @@ def sixbar_ideal_file(tmp_path_factory):
     return write_netcdf(simulate(scene), tmp_path_factory.mktemp("sixbar") / "ideal.nc")
 
 
-def test_simulated_ideal_sixbar_is_periodic(sixbar_ideal_file, tmp_path):
+def test_simulated_ideal_sixbar_is_periodic(sixbar_ideal_file, tmp_path, capsys):
     # Issue 3, check 5: a driven mechanism without clearance repeats every revolution; every
     # body channel must be periodic with period 1. The model's own exponent (Benettin on the
     # run's scene): perturbations only violate the constraints, which Baumgarte stabilisation
@@ -153,6 +154,22 @@ def test_simulated_ideal_sixbar_is_periodic(sixbar_ideal_file, tmp_path):
         assert abs(exponent - (-10.0 + np.log(6.0) / 10.0)) < 0.01
         # the built-in six-bar's integrator is DOPRI5
         assert analysis.attrs["model_lyapunov_rtol"] == DEFAULT_TOLERANCES["dopri5"][0]
+    # printed with its standard error, and read by every verdict's reason
+    printed = capsys.readouterr().out
+    assert f"model exponent {exponent:.3g} ± {stderr:.2g} 1/s" in printed
+    assert printed.count(f"model exponent {exponent:.3g} ± {stderr:.2g} 1/s votes regular") == 10
+    # the same exponent read back from that file: the same verdicts, not computed again
+    again = tmp_path / "again.nc"
+    assert main([*argv[:3], str(again), "--transient", "5", "--model-exponent", str(out_file)]) == 0
+    with xr.open_dataset(out_file) as first, xr.open_dataset(again) as second:
+        assert float(second.model_lyapunov_exponent) == float(first.model_lyapunov_exponent)
+        assert (second.verdict_reason == first.verdict_reason).all()
+    # a file without an exponent is refused before anything is computed, naming the variable
+    assert (
+        main([*argv[:3], str(tmp_path / "x.nc"), "--model-exponent", str(sixbar_ideal_file)]) == 2
+    )
+    assert "'model_lyapunov_exponent'" in capsys.readouterr().err
+    assert not (tmp_path / "x.nc").exists()
 
 
 #: the slider's clearance across its guide in ``wall_run`` (m)
