@@ -11,11 +11,13 @@ imports it, so the command line sits on top of the library and no import cycle r
     sim sweep sixbar --key joints.A.clearance --range 0 1e-3 11 --out-dir runs -o bifurcation.nc
     sim experiment synthesize | compare ...
 
-Errors in the input (scene, overrides, files) are reported with exit code 2 before any
-computation (every problem of a scene and its overrides in one message, each naming the file
-or the --set that wrote the key; a linkage that cannot close or cannot be driven through a
-full crank turn with the loop and the crank angle); a run that fails numerically reports the
-time, the joint and a diagnosis with exit code 1 and writes no output file.
+Ctrl-C prints one line (what was interrupted, at which simulated time or sweep point, what was
+kept) and exits with code 130; no output is left half-written. Errors in the input (scene,
+overrides, files) are reported with exit code 2 before any computation (every problem of a
+scene and its overrides in one message, each naming the file or the --set that wrote the key; a
+linkage that cannot close or cannot be driven through a full crank turn with the loop and the
+crank angle); a run that fails numerically reports the time, the joint and a diagnosis with
+exit code 1 and writes no output file.
 """
 
 import argparse
@@ -24,6 +26,9 @@ from collections.abc import Sequence
 
 from sim import __version__
 from sim.cli import analyze, experiment, simulate
+
+#: the exit code of a command stopped by Ctrl-C (SIGINT): 128 + 2, as a shell reports it
+INTERRUPTED = 130
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -43,12 +48,20 @@ def build_parser() -> argparse.ArgumentParser:
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the `sim` console script."""
     from sim.model.assembly import AssemblyError
-    from sim.run import SimulationError
+    from sim.run import Interrupted, SimulationError
     from sim.scene import SceneError
 
     args = build_parser().parse_args(argv)
     try:
         return int(args.func(args) or 0)
+    except KeyboardInterrupt as stop:
+        where, kept = (stop.where, stop.kept) if isinstance(stop, Interrupted) else ("", "")
+        print(
+            f"sim {args.command}: interrupted{' ' + where if where else ''}; "
+            f"{kept or 'nothing written'}",
+            file=sys.stderr,
+        )
+        return INTERRUPTED
     except (SceneError, AssemblyError, FileNotFoundError, ValueError) as exc:
         print(f"sim {args.command}: error: {exc}", file=sys.stderr)
         return 2

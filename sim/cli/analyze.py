@@ -8,7 +8,7 @@ import numpy as np
 import xarray as xr
 
 from sim.analysis.run import MIN_REVOLUTIONS, analyze_run
-from sim.cli.arguments import add_scene_arguments, check_output
+from sim.cli.arguments import add_scene_arguments, check_output, interrupted_while
 from sim.scene_keys import Field, check_option
 
 #: default transient: this many revolutions, or a quarter of the run if that is fewer
@@ -190,7 +190,8 @@ def analyze_command(args: argparse.Namespace) -> int:
             else args.transient
         )
         if args.model_lyapunov:
-            model = _model_lyapunov(run, transient)
+            with interrupted_while("computing the model exponent"):
+                model = _model_lyapunov(run, transient)
         exponent = (
             {}
             if model is None
@@ -199,7 +200,8 @@ def analyze_command(args: argparse.Namespace) -> int:
                 "model_stderr": float(model.model_lyapunov_stderr),
             }
         )
-        analysis = analyze_run(run, transient_revolutions=transient, **exponent)
+        with interrupted_while("analysing the channels"):
+            analysis = analyze_run(run, transient_revolutions=transient, **exponent)
         if model is not None:
             analysis = analysis.merge(model, combine_attrs="no_conflicts")
     except (OSError, ValueError, SimulationError) as error:
