@@ -1,6 +1,6 @@
-"""The `sim` command line: run | scene | analyze | sweep | experiment.
+"""The `sim` command line: run | scene | analyze | sweep | plot | experiment.
 
-One module per group of subcommands (simulate, analyze, experiment), each with a
+One module per group of subcommands (simulate, analyze, plot, experiment), each with a
 `register(subparsers)`; `arguments` holds what they share. Nothing outside this package
 imports it, so the command line sits on top of the library and no import cycle runs through it.
 
@@ -9,6 +9,7 @@ imports it, so the command line sits on top of the library and no import cycle r
     sim scene sixbar --set drive.speed_rpm=60
     sim analyze flagship.nc -o flagship-analysis.nc
     sim sweep sixbar --key joints.A.clearance --range 0 1e-3 11 --out-dir runs -o bifurcation.nc
+    sim plot bifurcation.nc -o bifurcation.svg      # a run, an analysis or a sweep
     sim experiment synthesize | compare ...
 
 Ctrl-C prints one line (what was interrupted, at which simulated time or sweep point, what was
@@ -25,7 +26,7 @@ import sys
 from collections.abc import Sequence
 
 from sim import __version__
-from sim.cli import analyze, experiment, simulate
+from sim.cli import analyze, experiment, plot, simulate
 
 #: the exit code of a command stopped by Ctrl-C (SIGINT): 128 + 2, as a shell reports it
 INTERRUPTED = 130
@@ -41,6 +42,7 @@ def build_parser() -> argparse.ArgumentParser:
     simulate.register(sub)
     analyze.register(sub)
     analyze.register_sweep(sub)
+    plot.register(sub)
     experiment.register(sub)
     return parser
 

@@ -263,6 +263,16 @@ def register_sweep(subparsers: argparse._SubParsersAction) -> argparse.ArgumentP
         ),
     )
     parser.add_argument(
+        "--indicators",
+        action="store_true",
+        help=(
+            "also each value's model exponent (Benettin, the run itself the reference, its "
+            "perturbed copy aligned over the transient's last revolutions) and each channel's "
+            "0-1 K, Poincaré period and verdict, which `sim plot` draws beneath the diagram; "
+            f"about 1.8 runs a value, simulation.revolutions ≥ the transient + {MIN_REVOLUTIONS}"
+        ),
+    )
+    parser.add_argument(
         "--label", help="short parameter name for file names (default: the key's last part)"
     )
     parser.add_argument(
@@ -288,9 +298,15 @@ def sweep_values(args: argparse.Namespace) -> list[float]:
 def sweep_command(args: argparse.Namespace) -> int:
     """Handler of ``sim sweep``; returns the exit code (errors are reported by ``sim.cli``)."""
     from sim.results import write_netcdf
-    from sim.studies.sweep import run_sweep
+    from sim.studies.model_lyapunov import DEFAULT_ALIGNMENT_REVOLUTIONS
+    from sim.studies.sweep import Indicators, run_sweep
 
     check_option("--transient", args.transient, TRANSIENT)
+    if args.indicators and args.transient < 1:
+        raise ValueError(
+            "--indicators needs --transient ≥ 1: the exponent's perturbed copy aligns over the "
+            "transient's last revolutions"
+        )
     check_output("--output", args.output)
     check_output("--out-dir", args.out_dir, directory=True)
     values = sweep_values(args)
@@ -304,6 +320,11 @@ def sweep_command(args: argparse.Namespace) -> int:
         transient_revolutions=args.transient,
         continuation=args.continuation,
         progress=not args.quiet,
+        indicators=(
+            Indicators(min(DEFAULT_ALIGNMENT_REVOLUTIONS, args.transient))
+            if args.indicators
+            else None
+        ),
     )
     write_netcdf(combined, args.output)
     print(f"{args.output}: {len(values)} values of {','.join(args.keys)}; runs in {args.out_dir}")

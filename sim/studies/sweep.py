@@ -23,7 +23,7 @@ from sim.analysis.bifurcation import (
 from sim.model.continuation import ContinuationError, State
 from sim.results import write_netcdf
 from sim.run import Interrupted, simulate_from
-from sim.scene import load_scene
+from sim.scene import key_field, load_scene
 from sim.studies.batch import contiguous_chunks, run_batch
 from sim.studies.model_lyapunov import run_with_exponent
 
@@ -160,7 +160,8 @@ def run_sweep(
 
     Returns:
         The bifurcation dataset of :func:`sim.analysis.bifurcation.combine_sweep` (dimension
-        ``parameter``), with the scene, overrides, transient and run files as attributes.
+        ``parameter``, its unit the swept key's), with the label, scene, overrides, transient
+        and run files as attributes.
     """
     if not keys:
         raise ValueError("sim sweep: give at least one --key to sweep")
@@ -216,7 +217,11 @@ def run_sweep(
         values,
         [extra for _, extra in points] if indicators else None,
     )
+    field = key_field(scenes[0], keys[0])
+    if field is not None and field.unit:
+        combined.parameter.attrs["units"] = field.unit
     combined.attrs.update(
+        label=label,
         scene=scene_source,
         overrides=json.dumps(list(overrides)),
         transient_revolutions=transient_revolutions,
