@@ -18,8 +18,8 @@ from sim.kernel_cache import compile_integrator
 from sim.model.assembly import Layout, build_system, crank_period, omega
 from sim.model.continuation import State, continued_state
 from sim.model.gaps import contact_memory
-from sim.model.initial import HINTED, assemble, initial_state
-from sim.model.mobility import check_full_turn
+from sim.model.initial import HINTED, initial_state
+from sim.model.mobility import drive_through_turn
 from sim.model.system import (
     OUT_NORMAL_FORCE,
     SLIDER_LAW_PAPER,
@@ -241,11 +241,8 @@ def prepare(
     (sim.model.continuation; ContinuationError when it cannot be). `step_log` > 0 keeps a log of
     that many accepted step ends for a lockstep follower (sim.solve.lockstep)."""
     system, layout = build_system(scene, ideal=ideal, rigid=rigid)
-    assembly = assemble(scene)
+    assembly = drive_through_turn(scene)
     period = crank_period(scene)
-    check_full_turn(
-        assembly.system, assembly.layout, assembly.q, period, scene["drive"]["initial_angle_deg"]
-    )
     q0, qd0 = initial_state(scene, system, layout, assembly)
     mem = contact_memory(system)
     if start is not None:
