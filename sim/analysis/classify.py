@@ -154,6 +154,14 @@ def classify(
         read.append(f"0–1 test K = {zero_one_K:.2f} not read (the wall sets the section values)")
     else:
         read.append(f"0–1 test K = {zero_one_K:.2f} votes {zero_one or 'nothing'}")
+    basis = _basis(
+        section,
+        pinned,
+        (model, series, zero_one),
+        (model_exponent, model_stderr),
+        (lyapunov_exponent, lyapunov_stderr),
+        zero_one_K,
+    )
     reason = (
         f"{verdict}: {why}. Read: "
         + "; ".join(read)
@@ -174,9 +182,33 @@ def classify(
         "section_held": int(section.held),
         "state_period": section.state_period,
         "agreement": agreement,
+        "basis": basis,
         "reason": reason,
     }
     return Verdict(verdict=verdict, evidence=evidence, agreement=agreement)
+
+
+def _basis(
+    section: SectionEvidence,
+    pinned: bool,
+    votes: tuple[str | None, str | None, str | None],
+    model: tuple[float, float],
+    series: tuple[float, float],
+    zero_one_K: float,
+) -> str:
+    """What decided a verdict, in a few words: the section, or the first decided chaos vote
+    (model exponent, series exponent, 0–1 test), or nothing; a channel its wall holds says so."""
+    if section.periodic:
+        whole = " with the whole state" if section.held else ""
+        return f"Poincaré points repeat every {section.period}{whole}"
+    texts = (
+        f"model exponent {model[0]:.3g} ± {model[1]:.2g} 1/s",
+        f"series exponent {series[0]:.3g} ± {series[1]:.2g} 1/s",
+        f"0–1 test K = {zero_one_K:.2f}",
+    )
+    decided = next((text for vote, text in zip(votes, texts, strict=True) if vote), None)
+    held = "; its wall holds the section value" if pinned else ""
+    return (decided or "no indicator decided") + held
 
 
 def _exponent_vote(verdict: Verdict) -> str:

@@ -214,6 +214,9 @@ def analyze_run(
         "verdict_reason": per_channel(
             [str(v.evidence["reason"]) for v in verdicts], "1", "evidence behind the verdict"
         ),
+        "verdict_basis": per_channel(
+            [str(v.evidence["basis"]) for v in verdicts], "1", "what decided the verdict"
+        ),
     }
     for name, (units, long_name) in _ATTRIBUTES.items():
         variables[name] = per_channel([numbers[name] for numbers, _ in results], units, long_name)

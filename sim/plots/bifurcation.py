@@ -40,7 +40,7 @@ def indicators_table(combined: xr.Dataset) -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
-def _scale(unit: str) -> tuple[float, str]:
+def scaled_unit(unit: str) -> tuple[float, str]:
     """The factor and unit a parameter is drawn in: lengths in mm, the rest as given."""
     return (MM, "mm") if unit == "m" else (1.0, unit)
 
@@ -54,7 +54,7 @@ def plot_bifurcation(combined: xr.Dataset, *, label: str, unit: str, transient: 
     (0 regular, 1 chaotic). A point where the joint is ideal (clearance 0) has no
     eccentricity, no K and no verdict for it. The title names the link model and integrator
     that drew the diagram (the dataset's ``model`` attribute)."""
-    factor, shown = _scale(unit)
+    factor, shown = scaled_unit(unit)
     x = combined.parameter.values * factor
     joints = [str(j) for j in combined.joint.values]
     channels = [(j, a) for j in joints for a in ("x", "y")]

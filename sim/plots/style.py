@@ -4,6 +4,7 @@ Figures are ``matplotlib.figure.Figure`` objects built without pyplot, so they r
 Agg backend in any session (batch jobs, tests) and hold no global state.
 """
 
+import io
 from contextlib import contextmanager
 from pathlib import Path
 
@@ -76,6 +77,14 @@ def label(data: xr.DataArray, prefix: str = "", scale_units: str | None = None) 
 
 #: the figure formats written, by file suffix
 FORMATS = ("png", "svg")
+
+
+def png_bytes(fig: Figure) -> bytes:
+    """A figure as PNG at the shared resolution, in memory (to embed in a page)."""
+    buffer = io.BytesIO()
+    with style():
+        fig.savefig(buffer, dpi=DPI, format="png")
+    return buffer.getvalue()
 
 
 def save(fig: Figure, path) -> None:

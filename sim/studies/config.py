@@ -520,6 +520,58 @@ STUDY_TARGETS = {
 }
 
 
+#: the figures (workflow/rules/paths.smk) a study's front-page section shows, in order: the
+#: first one a study has is its headline; each is per case unless per study
+SECTION_FIGURES = (
+    ("bifurcation", "bifurcation_figure", False),
+    ("responses", "responses", True),
+    ("trajectories", "trajectories", True),
+    ("chaos", "phase", True),
+    ("chaos", "poincare", True),
+    ("work_precision", "work_precision_figure", False),
+    ("experiment", "comparison_overlay", True),
+    ("experiment", "comparison_spectra", True),
+)
+
+
+#: the analyses that read each case's nominal run (so that a section may read it too)
+RUN_ANALYSES = ("responses", "trajectories", "chaos", "peaks", "experiment")
+
+
+def section_files(name: str, settings: Mapping) -> dict[str, list[tuple[str, dict]]]:
+    """(file name, wildcards) of what study `name`'s section of the front page reads
+    (sim.sections.StudyFiles): its cases' runs, their chaos analyses, its model exponent
+    table, its sweep's dataset and its figures (`SECTION_FIGURES`)."""
+    analyses = settings["analyses"]
+    study = {"study": name}
+    cases = [{"study": name, "case": case} for case in case_names(settings)]
+    sweep = "sweep" in settings
+    figures = [
+        (file, wildcards)
+        for analysis, file, per_case in SECTION_FIGURES
+        if analysis in analyses
+        for wildcards in (cases if per_case else [study])
+    ]
+    with_runs = not sweep and any(a in analyses for a in RUN_ANALYSES)
+    return {
+        "runs": [("run", wildcards) for wildcards in cases] if with_runs else [],
+        "analyses": [("analysis", w) for w in cases] if "chaos" in analyses else [],
+        "exponents": [("model_exponent_csv", study)] if "chaos" in analyses else [],
+        "sweep": [("bifurcation", study)] if "bifurcation" in analyses else [],
+        "figures": figures,
+    }
+
+
+def analysis_exponent(settings: Mapping, case: str) -> list[tuple[str, dict]]:
+    """(file name, wildcards) of the model exponent a case's chaos analysis reads: its
+    nominal run's (member 0) on the study's primary link model, for a study with `chaos`
+    (whose members' exponents are computed); none otherwise."""
+    if "chaos" not in settings["analyses"]:
+        return []
+    links = exponent_links(settings)[0]
+    return [("model_exponent", {"case": case, "links": links, "member": 0})]
+
+
 def has_clearance(settings: Mapping, case: str) -> bool:
     """Whether a case's overrides give some joint a clearance."""
     return any(
