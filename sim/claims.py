@@ -40,7 +40,7 @@ from sim.analysis.verdicts import (
     intervals_text,
     trend,
 )
-from sim.front_page import interval, number
+from sim.front_page import digits, interval, number
 from sim.results import scene_of
 from sim.scene import output_channel
 from sim.studies.config import LANDING_INPUTS
@@ -172,7 +172,7 @@ def _medians_text(components: list) -> str:
     of each quantity with its interval."""
     held = sum(c.verdict == SUPPORTED for c in components)
     medians = "; ".join(
-        f"{c.quantity.replace('_', ' ')} {c.estimate:+.3g} "
+        f"{c.quantity.replace('_', ' ')} {digits(c.estimate, '+')} "
         + interval(*c.interval, unit_of(c.quantity))
         for c in components
         if c.statistic == "median"
@@ -338,8 +338,7 @@ def _members_short(row: pd.Series) -> str:
     (one member: ± its standard error)."""
     if int(row.members) == 1:
         return (
-            f"{number(row.median_exponent_per_s, '1/s')} ± "
-            f"{number(row.mean_member_stderr_per_s, '1/s')}"
+            f"{number(row.median_exponent_per_s)} ± {number(row.mean_member_stderr_per_s, '1/s')}"
         )
     low, high = row.interval_low_per_s, row.interval_high_per_s
     return f"{number(row.median_exponent_per_s, '1/s')} {interval(low, high, '1/s')}"

@@ -20,20 +20,25 @@ FRONT = "sim-front"
 COLUMN_CH = 25
 
 
+def digits(value: float, sign: str = "") -> str:
+    """A finite number rounded to three significant digits, written out below a million
+    (6620, not 6.62e+03); ``sign`` "+" writes a plus sign on positive numbers."""
+    return format(float(f"{float(value):.3g}"), f"{sign}g")
+
+
 def number(value: float, unit: str = "", missing: str = "not computed") -> str:
     """A number as a table shows it: three significant digits and its unit; ``missing`` (why
     there is none) for NaN or infinity."""
     if value is None or not math.isfinite(float(value)):
         return missing
-    text = f"{float(value):.3g}"
-    return f"{text} {unit}" if unit else text
+    return f"{digits(value)} {unit}" if unit else digits(value)
 
 
 def interval(low: float, high: float, unit: str = "", missing: str = "no interval") -> str:
     """An interval [low, high] with three significant digits and its unit."""
     if not (math.isfinite(float(low)) and math.isfinite(float(high))):
         return missing
-    return f"[{float(low):.3g}, {float(high):.3g}]" + (f" {unit}" if unit else "")
+    return f"[{digits(low)}, {digits(high)}]" + (f" {unit}" if unit else "")
 
 
 def escaped(text: str) -> str:
@@ -74,20 +79,21 @@ def paragraph(text: str) -> str:
     return f"<p>{escaped(text)}</p>"
 
 
-def figure(path: str | Path, alt: str, width: str = "100%") -> str:
-    """HTML: a PNG or SVG file embedded as a data URI (the report is one file), ``width`` of
-    the page's width, its alternative text ``alt``."""
+def figure(path: str | Path, alt: str, width: str | None = None) -> str:
+    """HTML: a PNG or SVG file embedded as a data URI (the report is one file), at its own size
+    or ``width`` of the page's width, never wider than the page; its alternative text ``alt``."""
     path = Path(path)
     return image(path.read_bytes(), alt, "svg+xml" if path.suffix == ".svg" else "png", width)
 
 
-def image(data: bytes, alt: str, kind: str = "png", width: str = "100%") -> str:
-    """HTML: an image's bytes (``kind``: png or svg+xml) embedded as a data URI."""
+def image(data: bytes, alt: str, kind: str = "png", width: str | None = None) -> str:
+    """HTML: an image's bytes (``kind``: png or svg+xml) embedded as a data URI, sized as
+    :func:`figure` says."""
     # in lines of 76 characters: a URL parser drops the line breaks (WHATWG URL standard)
     encoded = base64.encodebytes(data).decode("ascii").strip()
     return (
         f'<img src="data:image/{kind};base64,{encoded}" alt="{escaped(alt)}" '
-        f'style="width:{width};max-width:100%;height:auto"/>'
+        f'style="{f"width:{width};" if width else ""}max-width:100%;height:auto"/>'
     )
 
 

@@ -15,6 +15,7 @@ import pandas as pd
 import xarray as xr
 
 from sim import front_page as page
+from sim.analysis.verdicts import NOT_EVALUATED
 from sim.claims import chaotic_points, exponent_comparison
 from sim.plots import headline, responses, style
 from sim.results import scene_of
@@ -65,6 +66,8 @@ def claims_table(claims: Sequence[Mapping]) -> str:
         evidence = page.paragraph(f"Claim: {c['claim']}") + page.paragraph(c["evidence"])
         if c["intervals"]:
             evidence += page.paragraph(c["intervals"])
+        elif c["verdict"] != NOT_EVALUATED:
+            evidence += page.paragraph("(single run)")
         rows.append(
             [
                 page.escaped(c["short"]),
@@ -105,7 +108,7 @@ def headline_figures(inputs: Mapping[str, str]) -> list[tuple[str, str]]:
         fig = responses.plot_responses(
             _open(inputs["flagship_run"]), _open(inputs["flagship_ideal"])
         )
-        image = page.image(style.png_bytes(fig), "the flagship against the ideal mechanism", "80%")
+        image = page.image(style.png_bytes(fig), "the flagship against the ideal mechanism", "70%")
         out.append(("The flagship against the ideal mechanism", image))
     return out
 

@@ -194,7 +194,7 @@ def study_section(name: str, settings: Mapping, files: StudyFiles) -> str:
         body.append(_sweep_html(files.sweep))
     figures = list(files.figures)
     if figures:
-        body.append(page.figure(figures[0], f"{name}: {Path(figures[0]).stem}", "75%"))
+        body.append(page.figure(figures[0], f"{name}: {Path(figures[0]).stem}", "70%"))
     if figures[1:]:
         folded = "".join(
             f"<p>{page.escaped(Path(path).stem)}</p>{page.figure(path, Path(path).stem)}"

@@ -66,9 +66,7 @@ def plot_exponents(tables: Sequence[tuple[str, pd.DataFrame]]) -> Figure:
         ax.set_ylabel("model exponent [1/s]")
         ax.legend(loc="best")
         ax.set_title(
-            "Model exponent of each case: median over members, interval for the median "
-            "(one member: ± its standard error)",
-            loc="left",
+            "Median over the members and its interval (one member: ± its error)", loc="left"
         )
     return fig
 

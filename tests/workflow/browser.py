@@ -8,10 +8,12 @@ writes them on 4 with --remote-debugging-pipe (Chrome DevTools Protocol, "Target
 """
 
 import base64
+import fcntl
 import json
 import os
 import shutil
 import subprocess
+import sys
 import tempfile
 import time
 from pathlib import Path
@@ -31,6 +33,14 @@ SWITCHES = (
 )
 
 
+#: the launcher: the descriptors given as its first two arguments become 3 and 4, then the
+#: browser (the rest of its arguments) replaces it
+LAUNCH = (
+    "import os, sys; os.dup2(int(sys.argv[1]), 3); os.dup2(int(sys.argv[2]), 4); "
+    "os.execv(sys.argv[3], sys.argv[3:])"
+)
+
+
 def chromium() -> str | None:
     """The path of an installed Chromium, or None."""
     return next((path for path in map(shutil.which, BINARIES) if path), None)
@@ -44,20 +54,18 @@ class Browser:
         self.profile = tempfile.TemporaryDirectory(prefix="chromium-profile-")
         to_browser, self._commands = os.pipe()
         self._replies, from_browser = os.pipe()
-        # the shell puts the pipe's ends on descriptors 3 and 4, where Chromium expects them
-        launch = f'exec "$@" 3<&{to_browser} 4>&{from_browser}'
+        # a small launcher puts the pipe's ends on descriptors 3 and 4, where Chromium expects
+        # them, from descriptors above 9 (a low one could be overwritten before it is moved)
+        to_browser, from_browser = (self._above_nine(fd) for fd in (to_browser, from_browser))
+        arguments = [
+            binary,
+            *SWITCHES,
+            "--remote-debugging-pipe",
+            f"--user-data-dir={self.profile.name}",
+            "about:blank",
+        ]
         self.process = subprocess.Popen(
-            [
-                "sh",
-                "-c",
-                launch,
-                "sh",
-                binary,
-                *SWITCHES,
-                "--remote-debugging-pipe",
-                f"--user-data-dir={self.profile.name}",
-                "about:blank",
-            ],
+            [sys.executable, "-c", LAUNCH, str(to_browser), str(from_browser), *arguments],
             pass_fds=(to_browser, from_browser),
             stdout=subprocess.DEVNULL,
             stderr=subprocess.DEVNULL,
@@ -71,6 +79,13 @@ class Browser:
         attached = self.send("Target.attachToTarget", targetId=page["targetId"], flatten=True)
         self.session = attached["sessionId"]
         self.send("Page.enable", session=True)
+
+    @staticmethod
+    def _above_nine(fd: int) -> int:
+        """The descriptor ``fd`` moved to the lowest free number above 9."""
+        moved = fcntl.fcntl(fd, fcntl.F_DUPFD, 10)
+        os.close(fd)
+        return moved
 
     def __enter__(self) -> "Browser":
         return self
