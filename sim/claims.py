@@ -286,7 +286,7 @@ def claim_flagship_chaos(inputs: Inputs) -> dict:
         _, (primary, *beside) = _exponents_by_case(inputs["flagship_model_exponents"])[0]
         model = _members_text(primary)
         model += "".join(f"; beside it, {_members_text(row)}" for row in beside)
-        key = f"model exponent {_members_short(primary)}; {key}"
+        key = f"model exponent {members_summary(primary)}; {key}"
     elif "model_lyapunov_exponent" in a:
         model = (
             f"{float(a.model_lyapunov_exponent):.3g} ± {float(a.model_lyapunov_stderr):.2g} 1/s "
@@ -333,15 +333,16 @@ def _members_text(row: pd.Series) -> str:
     )
 
 
-def _members_short(row: pd.Series) -> str:
-    """A case's model exponent over its members in a few words: the median and its interval
-    (one member: ± its standard error)."""
+def members_summary(row: pd.Series) -> str:
+    """A case's model exponent over its members in a few words (a row of a model_exponent
+    table): the median and its interval (one member: ± its standard error)."""
     if int(row.members) == 1:
         return (
             f"{number(row.median_exponent_per_s)} ± {number(row.mean_member_stderr_per_s, '1/s')}"
         )
     low, high = row.interval_low_per_s, row.interval_high_per_s
-    return f"{number(row.median_exponent_per_s, '1/s')} {interval(low, high, '1/s')}"
+    bounds = interval(low, high, "1/s", missing="(no interval)")
+    return f"{number(row.median_exponent_per_s, '1/s')} {bounds}"
 
 
 def _exponents_by_case(path) -> list[tuple[str, list[pd.Series]]]:

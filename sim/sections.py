@@ -16,10 +16,17 @@ import pandas as pd
 import xarray as xr
 
 from sim import front_page as page
+from sim.claims import members_summary
 from sim.results import scene_of
 from sim.scene import load_scene
 from sim.studies.config import case_names, case_overrides, sweep_points
 from sim.studies.sweep import model_text
+
+#: the link models of a study's exponents (`model_lyapunov.links`) in words
+_LINKS = {"rigid": "rigid links", "modal": "modal links"}
+RUN_LINKS = "the run's links"
+#: a study with more cases than this lists their names only (their settings are in its config)
+LISTED_CASES = 6
 
 
 @dataclass(frozen=True)
@@ -58,9 +65,14 @@ def _setting_text(name: str, settings: Mapping, scene: dict, model: str) -> str:
     """What the study ran, in one paragraph."""
     description = f": {scene['description'].strip()}" if scene.get("description") else ""
     own = settings.get("overrides") or {}
+    own_links = any(
+        key.startswith("solver.") or (key.startswith("bodies.") and key.endswith(".kind"))
+        for changes in settings.get("cases", {}).values()
+        for key in changes
+    )
     parts = [
         f"Study {name} on scene {scene['name']} ({settings['scene']}){description}",
-        f"Links: {model}",
+        f"Links: each case's own; the first case's {model}" if own_links else f"Links: {model}",
     ]
     if own:
         parts.append(f"Every run sets {_overrides_text(own)}")
@@ -71,6 +83,8 @@ def _setting_text(name: str, settings: Mapping, scene: dict, model: str) -> str:
             f"A sweep of {', '.join(settings['sweep']['keys'])}: {len(values)} values from "
             f"{min(values):g} to {max(values):g} {unit}"
         )
+    elif len(settings["cases"]) > LISTED_CASES:
+        parts.append(f"{len(settings['cases'])} cases: {', '.join(settings['cases'])}")
     else:
         cases = "; ".join(
             f"{case} ({_overrides_text(changes)})" if changes else case
@@ -95,19 +109,6 @@ def _exponent_rows(path: str | None) -> dict[str, pd.DataFrame]:
     }
 
 
-def _members_text(row: pd.Series) -> str:
-    """A case's exponent over its members on one link model."""
-    links = f"{row.links} links" if row.links in ("rigid", "modal") else "the run's links"
-    if int(row.members) == 1:
-        return f"{page.number(row.median_exponent_per_s, '1/s')} on {links} (one member)"
-    return (
-        f"median {page.number(row.median_exponent_per_s, '1/s')} over {int(row.members)} "
-        f"members on {links}, interval "
-        f"{page.interval(row.interval_low_per_s, row.interval_high_per_s, '1/s')} "
-        f"({row.interval_coverage:.0%} coverage)"
-    )
-
-
 def _chaos_html(cases: Sequence[str], analyses: Sequence[str], exponents: str | None) -> str:
     """Per case: the model exponent the verdicts read, a table of each channel's verdict and
     what decided it, and every reason folded beneath."""
@@ -125,7 +126,11 @@ def _chaos_html(cases: Sequence[str], analyses: Sequence[str], exponents: str | 
             model = "model exponent not computed: the channels' own indicators decide"
         beside = rows_by_case.get(case)
         if beside is not None:
-            model += "; " + "; ".join(_members_text(row) for _, row in beside.iterrows())
+            model += "; over the members: " + "; ".join(
+                f"{members_summary(row)} on {_LINKS.get(row.links, RUN_LINKS)} "
+                f"({int(row.members)} member{'s' * (int(row.members) > 1)})"
+                for _, row in beside.iterrows()
+            )
         parts.append(page.paragraph(f"Case {case}: {model}."))
         basis = analysis.get("verdict_basis")
         parts.append(

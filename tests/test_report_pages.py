@@ -117,7 +117,7 @@ def test_a_study_s_section_gives_the_model_exponent_its_verdicts_read(fourbar, t
     text = unescape(re.sub(r"<[^>]+>", " ", render(study_section("my-fourbar", SETTINGS, files))))
     assert "model exponent 41.3 ± 3.14 1/s" in text
     # a bound it lacks is said in words, not as nan
-    assert "median 40 1/s over 3 members on rigid links, interval no interval" in text
+    assert "over the members: 40 1/s (no interval) on rigid links (3 members)" in text
 
 
 def test_the_paper_s_section_of_nothing_run_says_so():
