@@ -27,7 +27,7 @@ def plot_exponents(tables: Sequence[tuple[str, pd.DataFrame]]) -> Figure:
     links = list(dict.fromkeys(rows.links))
     offsets = np.linspace(-0.15, 0.15, len(links)) if len(links) > 1 else [0.0]
     with style.style():
-        fig = style.figure(max(4.5, 1.1 * len(cases) + 1.5), 3.2)
+        fig = style.figure(max(6.5, 1.2 * len(cases) + 2.0), 3.4)
         ax = fig.subplots()
         for offset, model in zip(offsets, links, strict=True):
             marker, colour = LINK_MARKERS.get(model, ("D", "k"))
@@ -64,10 +64,8 @@ def plot_exponents(tables: Sequence[tuple[str, pd.DataFrame]]) -> Figure:
         ax.axhline(0.0, color=style.BOUND, lw=style.LINE)
         ax.set_xticks(range(len(cases)), [f"{study}\n{case}" for study, case in cases])
         ax.set_ylabel("model exponent [1/s]")
-        ax.legend(loc="best")
-        ax.set_title(
-            "Median over the members and its interval (one member: ± its error)", loc="left"
-        )
+        ax.legend(loc="upper left", bbox_to_anchor=(1.0, 1.0))
+        ax.set_title("Median over the members, its interval; one member: ± its error", loc="left")
     return fig
 
 
