@@ -1,5 +1,6 @@
 # Reproduction of every study of docs/studies.md: `snakemake -j2` (full),
-# `snakemake -j2 --configfile config/quick.yaml` (quick), `snakemake --report report.html`.
+# `snakemake -j2 --configfile config/quick.yaml` (quick), `snakemake --report report.html`
+# (after some studies only: `snakemake --report report.html results/<study>/done ...`).
 # Studies are entries of config/config.yaml; the rules are grouped by stage in workflow/rules.
 
 
@@ -24,7 +25,7 @@ include: "workflow/rules/figures.smk"
 include: "workflow/rules/report.smk"
 
 
-report: landing_page()
+report: "report/front.rst"
 
 
 rule all:

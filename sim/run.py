@@ -18,8 +18,8 @@ from sim.kernel_cache import compile_integrator
 from sim.model.assembly import Layout, build_system, crank_period, omega
 from sim.model.continuation import State, continued_state
 from sim.model.gaps import contact_memory
-from sim.model.initial import HINTED, assemble, initial_state
-from sim.model.mobility import check_full_turn
+from sim.model.initial import HINTED, initial_state
+from sim.model.mobility import drive_through_turn
 from sim.model.system import (
     OUT_NORMAL_FORCE,
     SLIDER_LAW_PAPER,
@@ -46,6 +46,16 @@ from sim.solve.work import Work, make_work, state_size
 
 class SimulationError(RuntimeError):
     """A run that cannot go on: the message names the time, the joint and a diagnosis."""
+
+
+class Interrupted(KeyboardInterrupt):
+    """Ctrl-C during a computation: ``where`` says what was interrupted and where (the
+    simulated time reached, the sweep point), ``kept`` what was written before it. A
+    KeyboardInterrupt still, so that nothing catching Exception swallows it."""
+
+    def __init__(self, where: str, kept: str = "nothing written"):
+        super().__init__(where)
+        self.where, self.kept = where, kept
 
 
 # Sane bounds, as fractions of the joint's own size: a penetration beyond them
@@ -231,11 +241,8 @@ def prepare(
     (sim.model.continuation; ContinuationError when it cannot be). `step_log` > 0 keeps a log of
     that many accepted step ends for a lockstep follower (sim.solve.lockstep)."""
     system, layout = build_system(scene, ideal=ideal, rigid=rigid)
-    assembly = assemble(scene)
+    assembly = drive_through_turn(scene)
     period = crank_period(scene)
-    check_full_turn(
-        assembly.system, assembly.layout, assembly.q, period, scene["drive"]["initial_angle_deg"]
-    )
     q0, qd0 = initial_state(scene, system, layout, assembly)
     mem = contact_memory(system)
     if start is not None:
@@ -468,12 +475,13 @@ def simulate_from(scene: dict, start: State | None, **options: Any) -> tuple[xr.
 
 class Run:
     """A run in progress (the arguments are those of `simulate`, and `start` as for
-    `simulate_from`): `advance_to` integrates it in pieces of at most a quarter revolution,
+    `simulate_from`; `announce_assembly`: with `progress`, say which assembly branch was
+    taken): `advance_to` integrates it in pieces of at most a quarter revolution,
     each checked (integrator status, energy audit), so a caller may pause it where it needs
     the state (as the model exponent does, sim.studies.model_lyapunov.run_with_exponent);
     `finish` integrates to the end and returns the output Dataset and the final state.
     Without pauses the pieces are those of an uninterrupted run, so it is reproduced bit for
-    bit."""
+    bit. Ctrl-C raises `Interrupted` with the simulated time reached."""
 
     def __init__(
         self,
@@ -486,6 +494,7 @@ class Run:
         revolutions: float | None = None,
         member: Member | None = None,
         step_log: int = 0,
+        announce_assembly: bool = True,
     ):
         self.member = Member() if member is None else member
         self.scene = perturbed(scene, self.member)
@@ -498,7 +507,7 @@ class Run:
             start=start,
             step_log=step_log,
         )
-        if progress and self.integ.assembly_branch != HINTED:
+        if progress and announce_assembly and self.integ.assembly_branch != HINTED:
             print(f"assembly: {self.integ.assembly_branch}", file=sys.stderr)
         # compiled before the clock starts: wall time and real-time factor are the integration's
         self.compile_time = compile_integrator(
@@ -524,7 +533,16 @@ class Run:
         wall0, cpu0 = time.perf_counter(), time.process_time()
         while self.t < t_stop:
             self.t = min(self.t + self.period / 4.0, t_stop)
-            self._check(self.integ.advance(self.t))
+            try:
+                status = self.integ.advance(self.t)
+            except KeyboardInterrupt:
+                # numba's compiled loop does not see signals: Python raises on its return
+                self.bar.close()
+                raise Interrupted(
+                    f"at t = {self.integ.t:.4g} s of {self.t_end:.4g} s, crank revolution "
+                    f"{self.integ.t / self.period:.1f} of {self.revolutions:g}"
+                ) from None
+            self._check(status)
             if self.t >= min(self.next_audit, self.t_end):
                 # the audit every quarter revolution, however often the caller pauses the run
                 # (the model exponent pauses it 32 times a revolution)

@@ -40,6 +40,7 @@ from sim.scene_keys import (
     TOP,
     TRANSLATIONAL,
     WELD,
+    Field,
     check_value,
     describe,
 )
@@ -416,6 +417,29 @@ def _check_position(value: Any, where: str, problems: list[Problem]) -> None:
                 f"'{where}' = {value!r} is not accepted; expected {describe(HINT['position'])}",
             )
         )
+
+
+def key_field(scene: dict, key: str) -> Field | None:
+    """What the dotted scene `key` accepts in the resolved `scene` (its `Field`: type, range,
+    unit), e.g. `joints.A.clearance` or `drive.speed_rpm`; None for a key no table declares."""
+    parts = key.split(".")
+    sections = {
+        "drive": DRIVE,
+        "contact": CONTACT,
+        "simulation": SIMULATION,
+        "solver": SOLVER,
+        "output": OUTPUT,
+    }
+    if len(parts) == 2 and parts[0] in sections:
+        return sections[parts[0]].get(parts[1])
+    if len(parts) == 3 and parts[0] == "bodies" and parts[1] in scene["bodies"]:
+        body = scene["bodies"][parts[1]]
+        return (BLOCK if body.get("shape") == "block" else BAR).get(parts[2])
+    if len(parts) == 3 and parts[0] == "joints" and parts[1] in scene["joints"]:
+        return (_joint_table(scene["joints"][parts[1]]) or {}).get(parts[2])
+    if len(parts) == 3 and parts[0] == "materials":
+        return MATERIAL.get(parts[2])
+    return TOP.get(key)
 
 
 def body_points(body: dict) -> list[str]:

@@ -7,8 +7,9 @@ import numpy as np
 import xarray as xr
 
 from sim.analysis.classify import VERDICTS, classify
-from sim.analysis.poincare import SECTION_RESOLUTION, section_structure
-from sim.analysis.run import MIN_REVOLUTIONS
+from sim.analysis.poincare import SECTION_RESOLUTION
+from sim.analysis.run import MIN_REVOLUTIONS, after_transient, run_scene
+from sim.analysis.section import section_evidence
 from sim.analysis.zero_one import zero_one_test
 
 #: the run variables sampled once per revolution
@@ -42,7 +43,7 @@ def section_indicators(
     computes them, but with the model's exponent in place of the per-channel time-series one):
     K of the 0–1 test on the Poincaré eccentricity (fluctuations below ``SECTION_RESOLUTION``
     of the channel's range count as noise, K = 0), the period of the section points
-    (:func:`sim.analysis.poincare.section_structure`, 0 when they do not repeat) and the
+    (:func:`sim.analysis.section.section_evidence`, 0 when they do not repeat) and the
     verdict (:func:`sim.analysis.classify.classify` with ``exponent`` ± ``stderr``, 1/s, the
     model-based largest exponent of the whole linkage, as the Lyapunov vote).
 
@@ -52,38 +53,30 @@ def section_indicators(
         variables are empty for an all-ideal run.
     """
     crank_period = float(run.attrs["crank_period"])
-    steady = run.sel(time=run.time >= run.time.values[0] + transient_revolutions * crank_period)
-    sections = run.isel(revolution=slice(transient_revolutions, None))
-    if sections.sizes["revolution"] < MIN_SECTION_POINTS:
+    steady = after_transient(run, transient_revolutions)
+    if steady.sizes["revolution"] < MIN_SECTION_POINTS:
         raise ValueError(
-            f"section_indicators: {sections.sizes['revolution']} section points after the "
+            f"section_indicators: {steady.sizes['revolution']} section points after the "
             f"transient of {transient_revolutions}; the indicators need {MIN_SECTION_POINTS}"
         )
     shape = (run.sizes["joint"], run.sizes["axis"])
     K, period = np.full(shape, np.nan), np.zeros(shape, dtype=np.int64)
     verdict = np.full(shape, "", dtype=object)
+    evidence = section_evidence(steady, run_scene(run)) if run.sizes["joint"] else {}
     for i, joint in enumerate(run.joint.values):
         for j, axis in enumerate(run.axis.values):
-            where = {"joint": joint, "axis": axis}
-            value = steady.eccentricity.sel(where).values
-            extent = np.array([np.ptp(value), np.ptp(steady.eccentricity_rate.sel(where).values)])
-            points = np.column_stack(
-                [
-                    sections.section_eccentricity.sel(where).values,
-                    sections.section_eccentricity_rate.sel(where).values,
-                ]
-            )
-            K[i, j] = zero_one_test(points[:, 0], noise_floor=SECTION_RESOLUTION * extent[0]).K
-            structure = section_structure(points, extent)
-            period[i, j] = structure.period
+            channel, section = evidence[f"{joint}.{axis}"]
+            K[i, j] = zero_one_test(
+                channel.section_value, noise_floor=SECTION_RESOLUTION * channel.extent[0]
+            ).K
+            period[i, j] = section.period
             verdict[i, j] = classify(
+                section=section,
                 model_exponent=exponent,
                 model_stderr=stderr,
                 lyapunov_exponent=np.nan,
                 lyapunov_stderr=np.nan,
                 zero_one_K=K[i, j],
-                section_period=structure.period,
-                section_return_distance=structure.return_distance,
                 time_scale=crank_period,
             ).verdict
     dims = ("joint", "axis")

@@ -4,6 +4,8 @@ import math
 from collections.abc import Sequence
 from dataclasses import dataclass
 
+from sim.analysis.section import SectionEvidence
+
 #: an exponent counts as positive when it exceeds this many standard errors …
 SIGNIFICANCE = 2.0
 #: … and grows separations by at least this fraction (in e-folds) per time scale: an exponent
@@ -63,11 +65,10 @@ def _consistent(vote: str, verdict: str) -> bool:
 
 def classify(
     *,
+    section: SectionEvidence,
     lyapunov_exponent: float,
     lyapunov_stderr: float,
     zero_one_K: float,
-    section_period: int,
-    section_return_distance: float,
     time_scale: float,
     model_exponent: float = math.nan,
     model_stderr: float = math.nan,
@@ -81,7 +82,10 @@ def classify(
         largest Lyapunov exponent and the 0–1 test tell chaos (exponential divergence,
         diffusive walk) from regular motion. So:
 
-        - section points repeat → 'periodic';
+        - section points repeat → 'periodic', unless the channel is held at its clearance
+          bound at the section while the mechanism's state does not return
+          (:class:`sim.analysis.section.SectionEvidence`): then the wall, not the motion, sets
+          the section value, and neither the section nor the 0–1 test on those values votes;
         - otherwise the first DECIDED chaos vote, in this order, gives 'chaotic' or
           'quasi-periodic': the model's own exponent (Benettin on the linkage, when given), the
           channel's time-series exponent, the 0–1 test;
@@ -91,7 +95,8 @@ def classify(
         the least practical growth (:func:`lyapunov_vote`); K votes chaotic above 0.5 and
         regular below. The model exponent comes first because it is the linkage's own and the
         quantity the literature reports; when a decided vote disagrees with the verdict,
-        ``agreement`` drops below 1 and the reason says so.
+        ``agreement`` drops below 1 and the reason says so. The reason names every indicator
+        read, its value and its vote.
 
     Choosing the parameters:
         time_scale: the forcing period (the crank period for the linkage), in the exponents'
@@ -103,11 +108,10 @@ def classify(
         Springer (1989) (periodic, quasi-periodic and chaotic steady states).
 
     Args:
+        section: what the Poincaré section says about the channel.
         lyapunov_exponent: the channel's largest exponent (NaN when it could not be estimated).
         lyapunov_stderr: its standard error.
         zero_one_K: K of the 0–1 test on the section points (NaN when unknown).
-        section_period: period of the section points, 0 when they do not repeat.
-        section_return_distance: normalised return distance at that period.
         time_scale: the forcing period.
         model_exponent, model_stderr: the model's largest exponent and its standard error
             (NaN: not computed).
@@ -115,38 +119,53 @@ def classify(
     Returns:
         A :class:`Verdict`.
     """
+    pinned = section.period > 0 and not section.periodic
     model = lyapunov_vote(model_exponent, model_stderr, time_scale)
     series = lyapunov_vote(lyapunov_exponent, lyapunov_stderr, time_scale)
-    zero_one = zero_one_vote(zero_one_K)
+    zero_one = None if pinned else zero_one_vote(zero_one_K)
     decided = model or series or zero_one
-    if section_period > 0:
-        verdict = "periodic"
-        why = f"the Poincaré points repeat every {section_period} crossing(s)"
+    if section.periodic:
+        verdict, why = "periodic", "the section points repeat"
     elif decided == "chaotic":
-        verdict = "chaotic"
-        why = "the section points do not repeat and the motion diverges"
+        verdict, why = "chaotic", "the motion diverges"
     elif decided == "regular":
-        verdict = "quasi-periodic"
-        why = "the section points do not repeat but the motion does not diverge"
+        verdict, why = "quasi-periodic", "the motion does not diverge"
     else:
-        verdict = "undecided"
-        why = "the section points do not repeat and no chaos indicator is decided"
+        verdict, why = "undecided", "no chaos indicator is decided"
 
     votes = [vote for vote in (model, series, zero_one) if vote is not None]
     consistent = sum(_consistent(vote, verdict) for vote in votes) + 1  # + the section
     agreement = consistent / (len(votes) + 1)
-    model_text = (
-        ""
-        if math.isnan(model_exponent)
-        else f"model exponent {model_exponent:.3g} ± {model_stderr:.2g} 1/s votes "
-        f"{model or 'nothing'}, "
+    read = [f"section: {section.text()}" + ("; not read as periodic" if pinned else "")]
+    if not math.isnan(model_exponent):
+        read.append(
+            f"model exponent {model_exponent:.3g} ± {model_stderr:.2g} 1/s votes "
+            f"{model or 'nothing'}"
+        )
+    read.append(
+        "series exponent not estimated"
+        if math.isnan(lyapunov_exponent)
+        else f"series exponent {lyapunov_exponent:.3g} ± {lyapunov_stderr:.2g} 1/s votes "
+        f"{series or 'nothing'}"
+    )
+    if math.isnan(zero_one_K):
+        read.append("0–1 test not estimated")
+    elif pinned:
+        read.append(f"0–1 test K = {zero_one_K:.2f} not read (the wall sets the section values)")
+    else:
+        read.append(f"0–1 test K = {zero_one_K:.2f} votes {zero_one or 'nothing'}")
+    basis = _basis(
+        section,
+        pinned,
+        (model, series, zero_one),
+        (model_exponent, model_stderr),
+        (lyapunov_exponent, lyapunov_stderr),
+        zero_one_K,
     )
     reason = (
-        f"{verdict}: {why} (return distance {section_return_distance:.2g} of the orbit size); "
-        + model_text
-        + f"series exponent {lyapunov_exponent:.3g} ± {lyapunov_stderr:.2g} 1/s votes "
-        f"{series or 'nothing'}, 0–1 test K = {zero_one_K:.2f} votes {zero_one or 'nothing'}"
-        + ("" if agreement == 1.0 else "; the indicators disagree")
+        f"{verdict}: {why}. Read: "
+        + "; ".join(read)
+        + ("; the indicators disagree" if agreement != 1.0 else "")
         + "."
     )
     evidence: dict[str, float | int | str] = {
@@ -158,12 +177,38 @@ def classify(
         "lyapunov_vote": series or "none",
         "zero_one_K": zero_one_K,
         "zero_one_vote": zero_one or "none",
-        "section_period": section_period,
-        "section_return_distance": section_return_distance,
+        "section_period": section.period,
+        "section_return_distance": section.return_distance,
+        "section_held": int(section.held),
+        "state_period": section.state_period,
         "agreement": agreement,
+        "basis": basis,
         "reason": reason,
     }
     return Verdict(verdict=verdict, evidence=evidence, agreement=agreement)
+
+
+def _basis(
+    section: SectionEvidence,
+    pinned: bool,
+    votes: tuple[str | None, str | None, str | None],
+    model: tuple[float, float],
+    series: tuple[float, float],
+    zero_one_K: float,
+) -> str:
+    """What decided a verdict, in a few words: the section, or the first decided chaos vote
+    (model exponent, series exponent, 0–1 test), or nothing; a channel its wall holds says so."""
+    if section.periodic:
+        whole = " with the whole state" if section.held else ""
+        return f"Poincaré points repeat every {section.period}{whole}"
+    texts = (
+        f"model exponent {model[0]:.3g} ± {model[1]:.2g} 1/s",
+        f"series exponent {series[0]:.3g} ± {series[1]:.2g} 1/s",
+        f"0–1 test K = {zero_one_K:.2f}",
+    )
+    decided = next((text for vote, text in zip(votes, texts, strict=True) if vote), None)
+    held = "; its wall holds the section value" if pinned else ""
+    return (decided or "no indicator decided") + held
 
 
 def _exponent_vote(verdict: Verdict) -> str:

@@ -22,11 +22,14 @@ class SectionStructure:
             best k (at ``period`` when periodic): below the resolution for a periodic orbit.
         spread: RMS normalised distance of the points from their centroid: ~0 for period 1,
             of order 0.1–1 for a closed curve or a chaotic scatter.
+        returns: the median normalised distance between points k crossings apart, for
+            k = 1 … max_period.
     """
 
     period: int
     return_distance: float
     spread: float
+    returns: tuple[float, ...]
 
 
 def section_structure(
@@ -91,4 +94,5 @@ def section_structure(
         period=period,
         return_distance=float(returns[period - 1] if period else returns.min()),
         spread=spread,
+        returns=tuple(float(r) for r in returns),
     )

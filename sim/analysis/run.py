@@ -1,14 +1,15 @@
 """Chaos analysis of one simulation output dataset, channel by channel."""
 
-import dataclasses
-from dataclasses import dataclass
+import json
+import math
 
 import numpy as np
 import xarray as xr
 
 from sim.analysis.classify import VERDICTS, Verdict, classify, indicator_agreement
 from sim.analysis.lyapunov import rosenstein
-from sim.analysis.poincare import MAX_PERIOD, SECTION_RESOLUTION, section_structure
+from sim.analysis.poincare import MAX_PERIOD, SECTION_RESOLUTION
+from sim.analysis.section import STILL_RANGE, Coordinate, SectionEvidence, section_evidence
 from sim.analysis.zero_one import zero_one_test
 
 #: variables :func:`analyze_run` reads, with their dimensions
@@ -26,18 +27,6 @@ REQUIRED_VARIABLES = {
 MIN_REVOLUTIONS = 2 * MAX_PERIOD + 1
 #: relative deviation of the time steps tolerated as uniform sampling
 UNIFORM_SAMPLING_RTOL = 1e-6
-
-
-@dataclass(frozen=True)
-class _Channel:
-    name: str
-    source: str
-    axis: str
-    quantity: str
-    value: np.ndarray
-    rate: np.ndarray
-    section_value: np.ndarray
-    section_rate: np.ndarray
 
 
 def validate_run(ds: xr.Dataset, *, transient_revolutions: int) -> None:
@@ -60,58 +49,29 @@ def validate_run(ds: xr.Dataset, *, transient_revolutions: int) -> None:
         raise ValueError("variable 'time' is not uniformly sampled")
 
 
-def _channels(ds: xr.Dataset) -> list[_Channel]:
-    # an all-ideal run has no eccentricity to analyse: its bodies stand in, so that the run
-    # is still classified (periodic, if the model is right)
-    if ds.sizes["joint"] > 0:
-        source, quantity = "joint", "eccentricity"
-        names = ("eccentricity", "eccentricity_rate", "section_eccentricity")
-        section_rate = "section_eccentricity_rate"
-    else:
-        source, quantity = "body", "position"
-        names = ("position", "velocity", "section_position")
-        section_rate = "section_velocity"
-    value, rate, section = (ds[name] for name in names)
-    return [
-        _Channel(
-            name=f"{item}.{axis}",
-            source=str(item),
-            axis=str(axis),
-            quantity=quantity,
-            value=value.sel({source: item, "axis": axis}).values,
-            rate=rate.sel({source: item, "axis": axis}).values,
-            section_value=section.sel({source: item, "axis": axis}).values,
-            section_rate=ds[section_rate].sel({source: item, "axis": axis}).values,
-        )
-        for item in ds[source].values
-        for axis in ds["axis"].values
-    ]
-
-
-def _analyze_channel(channel: _Channel, dt: float, crank_period: float) -> tuple[dict, Verdict]:
-    extent = np.array([np.ptp(channel.value), np.ptp(channel.rate)])
-    section = np.column_stack([channel.section_value, channel.section_rate])
-    moving = extent[0] > 1e-6 * np.max(np.abs(channel.value))
-    structure = section_structure(section, extent)
-    if not moving:
-        # A still channel is a fixed point: its section repeats every crossing.
-        structure = dataclasses.replace(structure, period=1, return_distance=0.0)
-    # A channel whose range is within float32 storage precision of its level
-    # (e.g. the slider across an ideal guide) does not move.
-    if moving:
+def _analyze_channel(
+    channel: Coordinate,
+    section: SectionEvidence,
+    dt: float,
+    crank_period: float,
+    model: tuple[float, float],
+) -> tuple[dict, Verdict]:
+    """The indicators of one channel and its verdict; ``model``: the model exponent and its
+    standard error (1/s; NaN when not computed)."""
+    if channel.extent[0] > STILL_RANGE * np.max(np.abs(channel.value)):
         exponent = rosenstein(channel.value, dt)
         lyap = (exponent.exponent, exponent.stderr, exponent.emb_dim, exponent.lag)
     else:
-        # a channel that does not move has no divergence to measure
-        lyap = (np.nan, np.nan, 0, 0)
-    K = zero_one_test(channel.section_value, noise_floor=SECTION_RESOLUTION * extent[0]).K
+        lyap = (np.nan, np.nan, 0, 0)  # a channel that does not move has no divergence
+    K = zero_one_test(channel.section_value, noise_floor=SECTION_RESOLUTION * channel.extent[0]).K
     verdict = classify(
+        section=section,
         lyapunov_exponent=lyap[0],
         lyapunov_stderr=lyap[1],
         zero_one_K=K,
-        section_period=structure.period,
-        section_return_distance=structure.return_distance,
         time_scale=crank_period,
+        model_exponent=model[0],
+        model_stderr=model[1],
     )
     numbers = {
         "lyapunov_exponent": lyap[0],
@@ -119,9 +79,11 @@ def _analyze_channel(channel: _Channel, dt: float, crank_period: float) -> tuple
         "embedding_dimension": lyap[2],
         "embedding_lag": lyap[3] * dt,
         "zero_one_K": K,
-        "section_period": structure.period,
-        "section_return_distance": structure.return_distance,
-        "section_spread": structure.spread,
+        "section_period": section.period,
+        "section_return_distance": section.return_distance,
+        "section_spread": channel.structure.spread,
+        "section_held": int(section.held),
+        "state_period": section.state_period,
         "indicator_agreement": verdict.agreement,
     }
     return numbers, verdict
@@ -139,11 +101,39 @@ _ATTRIBUTES = {
         "median distance between section points one period apart, over the orbit extent",
     ),
     "section_spread": ("1", "RMS distance of section points from their centroid, over extent"),
+    "section_held": (
+        "1",
+        "1: the channel's section value lies at its clearance bound in most crossings",
+    ),
+    "state_period": (
+        "1",
+        "period of every recorded coordinate of the mechanism at the section (0: none)",
+    ),
     "indicator_agreement": ("1", "fraction of chaos indicators consistent with the verdict"),
 }
 
 
-def analyze_run(ds: xr.Dataset, *, transient_revolutions: int) -> xr.Dataset:
+def after_transient(ds: xr.Dataset, transient_revolutions: int) -> xr.Dataset:
+    """A run's samples and section points after its first ``transient_revolutions``."""
+    time = ds["time"].values
+    return ds.isel(
+        time=time >= time[0] + transient_revolutions * float(ds.attrs["crank_period"]),
+        revolution=slice(transient_revolutions, None),
+    )
+
+
+def run_scene(ds: xr.Dataset) -> dict | None:
+    """The resolved scene a run records (its ``scene`` attribute, JSON); None without."""
+    return json.loads(ds.attrs["scene"]) if "scene" in ds.attrs else None
+
+
+def analyze_run(
+    ds: xr.Dataset,
+    *,
+    transient_revolutions: int,
+    model_exponent: float = math.nan,
+    model_stderr: float = math.nan,
+) -> xr.Dataset:
     """Phase portraits, Poincaré points, exponents and verdicts of every channel of a run.
 
     Channels are the eccentricity of every clearance joint along every axis ('A.x', …) or,
@@ -151,33 +141,39 @@ def analyze_run(ds: xr.Dataset, *, transient_revolutions: int) -> xr.Dataset:
     first ``transient_revolutions`` crank revolutions are dropped. Per channel:
 
     - the phase portrait (value against rate) after the transient;
-    - the Poincaré points (one per revolution) and their period
-      (:func:`sim.analysis.poincare.section_structure`);
+    - the Poincaré points (one per revolution), their period
+      (:func:`sim.analysis.poincare.section_structure`), whether the joint's wall holds the
+      channel there and whether the mechanism's whole state returns with it
+      (:func:`sim.analysis.section.section_evidence`);
     - the largest Lyapunov exponent from the value series
       (:func:`sim.analysis.lyapunov.rosenstein`, automatic embedding and fit range);
     - the 0–1 test on the section values (:func:`sim.analysis.zero_one.zero_one_test`), with
       fluctuations below the section resolution taken as numerical noise;
     - the verdict and its reason (:func:`sim.analysis.classify.classify`), with the crank
-      period as time scale.
+      period as time scale and the model's exponent, when given, as the first chaos vote.
 
     Args:
         ds: a run dataset following the contract of ``REQUIRED_VARIABLES`` (uniform ``time``
-            in s, ``revolution``, global attribute ``crank_period`` in s).
+            in s, ``revolution``, global attribute ``crank_period`` in s; the attribute
+            ``scene``, the resolved scene as JSON, gives the clearance bounds).
         transient_revolutions: revolutions dropped before analysing.
+        model_exponent, model_stderr: the model-based largest exponent of the linkage and its
+            standard error (1/s, :mod:`sim.studies.model_lyapunov`); NaN: not computed.
 
     Returns:
         A CF-annotated dataset with dimensions ``channel``, ``sample`` and ``revolution``.
     """
     validate_run(ds, transient_revolutions=transient_revolutions)
     crank_period = float(ds.attrs["crank_period"])
-    time = ds["time"].values
-    steady = ds.isel(
-        time=time >= time[0] + transient_revolutions * crank_period,
-        revolution=slice(transient_revolutions, None),
-    )
-    dt = float(np.mean(np.diff(time)))
-    channels = _channels(steady)
-    results = [_analyze_channel(channel, dt, crank_period) for channel in channels]
+    steady = after_transient(ds, transient_revolutions)
+    dt = float(np.mean(np.diff(ds["time"].values)))
+    evidence = section_evidence(steady, run_scene(ds))
+    channels = [channel for channel, _ in evidence.values()]
+    model = (model_exponent, model_stderr)
+    results = [
+        _analyze_channel(channel, section, dt, crank_period, model)
+        for channel, section in evidence.values()
+    ]
     verdicts = [verdict for _, verdict in results]
 
     def per_channel(values: list, units: str, long_name: str) -> xr.Variable:
@@ -189,7 +185,7 @@ def analyze_run(ds: xr.Dataset, *, transient_revolutions: int) -> xr.Dataset:
 
     variables = {
         "channel_joint": per_channel(
-            [c.source for c in channels], "1", "clearance joint (or body, all-ideal run)"
+            [c.item for c in channels], "1", "clearance joint (or body, all-ideal run)"
         ),
         "channel_axis": per_channel([c.axis for c in channels], "1", "axis of the channel"),
         "channel_quantity": per_channel(
@@ -217,6 +213,9 @@ def analyze_run(ds: xr.Dataset, *, transient_revolutions: int) -> xr.Dataset:
         ),
         "verdict_reason": per_channel(
             [str(v.evidence["reason"]) for v in verdicts], "1", "evidence behind the verdict"
+        ),
+        "verdict_basis": per_channel(
+            [str(v.evidence["basis"]) for v in verdicts], "1", "what decided the verdict"
         ),
     }
     for name, (units, long_name) in _ATTRIBUTES.items():

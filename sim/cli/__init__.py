@@ -1,6 +1,6 @@
-"""The `sim` command line: run | scene | analyze | sweep | experiment.
+"""The `sim` command line: run | scene | analyze | sweep | plot | experiment.
 
-One module per group of subcommands (simulate, analyze, experiment), each with a
+One module per group of subcommands (simulate, analyze, plot, experiment), each with a
 `register(subparsers)`; `arguments` holds what they share. Nothing outside this package
 imports it, so the command line sits on top of the library and no import cycle runs through it.
 
@@ -9,13 +9,16 @@ imports it, so the command line sits on top of the library and no import cycle r
     sim scene sixbar --set drive.speed_rpm=60
     sim analyze flagship.nc -o flagship-analysis.nc
     sim sweep sixbar --key joints.A.clearance --range 0 1e-3 11 --out-dir runs -o bifurcation.nc
+    sim plot bifurcation.nc -o bifurcation.svg      # a run, an analysis or a sweep
     sim experiment synthesize | compare ...
 
-Errors in the input (scene, overrides, files) are reported with exit code 2 before any
-computation (every problem of a scene and its overrides in one message, each naming the file
-or the --set that wrote the key; a linkage that cannot close or cannot be driven through a
-full crank turn with the loop and the crank angle); a run that fails numerically reports the
-time, the joint and a diagnosis with exit code 1 and writes no output file.
+Ctrl-C prints one line (what was interrupted, at which simulated time or sweep point, what was
+kept) and exits with code 130; no output is left half-written. Errors in the input (scene,
+overrides, files) are reported with exit code 2 before any computation (every problem of a
+scene and its overrides in one message, each naming the file or the --set that wrote the key; a
+linkage that cannot close or cannot be driven through a full crank turn with the loop and the
+crank angle); a run that fails numerically reports the time, the joint and a diagnosis with
+exit code 1 and writes no output file.
 """
 
 import argparse
@@ -23,7 +26,10 @@ import sys
 from collections.abc import Sequence
 
 from sim import __version__
-from sim.cli import analyze, experiment, simulate
+from sim.cli import analyze, experiment, plot, simulate
+
+#: the exit code of a command stopped by Ctrl-C (SIGINT): 128 + 2, as a shell reports it
+INTERRUPTED = 130
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -36,6 +42,7 @@ def build_parser() -> argparse.ArgumentParser:
     simulate.register(sub)
     analyze.register(sub)
     analyze.register_sweep(sub)
+    plot.register(sub)
     experiment.register(sub)
     return parser
 
@@ -43,12 +50,20 @@ def build_parser() -> argparse.ArgumentParser:
 def main(argv: Sequence[str] | None = None) -> int:
     """Entry point of the `sim` console script."""
     from sim.model.assembly import AssemblyError
-    from sim.run import SimulationError
+    from sim.run import Interrupted, SimulationError
     from sim.scene import SceneError
 
     args = build_parser().parse_args(argv)
     try:
         return int(args.func(args) or 0)
+    except KeyboardInterrupt as stop:
+        where, kept = (stop.where, stop.kept) if isinstance(stop, Interrupted) else ("", "")
+        print(
+            f"sim {args.command}: interrupted{' ' + where if where else ''}; "
+            f"{kept or 'nothing written'}",
+            file=sys.stderr,
+        )
+        return INTERRUPTED
     except (SceneError, AssemblyError, FileNotFoundError, ValueError) as exc:
         print(f"sim {args.command}: error: {exc}", file=sys.stderr)
         return 2

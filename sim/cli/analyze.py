@@ -8,13 +8,15 @@ import numpy as np
 import xarray as xr
 
 from sim.analysis.run import MIN_REVOLUTIONS, analyze_run
-from sim.cli.arguments import add_scene_arguments, check_output
+from sim.cli.arguments import add_scene_arguments, check_output, interrupted_while
 from sim.scene_keys import Field, check_option
 
 #: default transient: this many revolutions, or a quarter of the run if that is fewer
 DEFAULT_TRANSIENT_REVOLUTIONS = 20
 #: what --transient accepts (crank revolutions)
 TRANSIENT = Field("int", 0, unit="revolutions")
+#: the variables of a model exponent (sim.studies.model_lyapunov.model_lyapunov_dataset)
+MODEL_VARIABLES = ("model_lyapunov_exponent", "model_lyapunov_stderr")
 
 
 def default_transient(n_revolutions: int) -> int:
@@ -47,13 +49,40 @@ def _check_length(run: xr.Dataset, transient: int | None) -> None:
         )
 
 
+def _value(number: float, spec: str) -> str:
+    """A number as the table prints it; a dash where it could not be estimated."""
+    return "–" if np.isnan(number) else format(number, spec)
+
+
+def exponent_line(analysis: xr.Dataset) -> str | None:
+    """The model exponent of an analysis with its standard error and settings, one line; None
+    when the analysis has none."""
+    if "model_lyapunov_exponent" not in analysis:
+        return None
+    a = analysis.attrs
+    settings = ", ".join(
+        f"{name} {a[key]:g}"
+        for name, key in (("rtol", "model_lyapunov_rtol"), ("d0", "model_lyapunov_d0"))
+        if key in a
+    )
+    links = a.get("model_lyapunov_links")
+    on = f" on {links} links" if links in ("rigid", "modal") else ""
+    return (
+        f"model exponent {float(analysis.model_lyapunov_exponent):.3g} ± "
+        f"{float(analysis.model_lyapunov_stderr):.2g} 1/s (Benettin on the linkage's own "
+        f"equations{on}{', ' + settings if settings else ''}): the first chaos vote of every "
+        "channel"
+    )
+
+
 def verdict_table(analysis: xr.Dataset) -> str:
-    """The verdict of every channel, one line each, with its largest Lyapunov exponent."""
-    lines = [f"{'channel':<14} {'verdict':<16} {'λ (1/s)':>10}  reason"]
+    """The verdict of every channel, one line each, with its series exponent (Rosenstein, 1/s)
+    and the reason, which names every indicator read."""
+    lines = [f"{'channel':<14} {'verdict':<16} {'series λ (1/s)':>14}  reason"]
     for i, channel in enumerate(analysis["channel"].values):
         lines.append(
             f"{channel!s:<14} {analysis['verdict'].values[i]!s:<16} "
-            f"{float(analysis['lyapunov_exponent'].values[i]):>10.3g}  "
+            f"{_value(float(analysis['lyapunov_exponent'].values[i]), '.3g'):>14}  "
             f"{analysis['verdict_reason'].values[i]}"
         )
     return "\n".join(lines)
@@ -81,12 +110,23 @@ def register(subparsers: argparse._SubParsersAction) -> argparse.ArgumentParser:
             "or a quarter of the run, whichever is smaller)"
         ),
     )
-    parser.add_argument(
+    model = parser.add_mutually_exclusive_group()
+    model.add_argument(
         "--model-lyapunov",
         action="store_true",
         help=(
             "also compute the largest Lyapunov exponent of the model (Benettin: the run's scene "
-            "integrated again beside a perturbed copy; costs about two runs)"
+            "integrated again beside a perturbed copy; costs about two runs); the verdicts "
+            "read it first"
+        ),
+    )
+    model.add_argument(
+        "--model-exponent",
+        type=Path,
+        metavar="FILE",
+        help=(
+            "take the model exponent from FILE instead (an analysis made with "
+            "--model-lyapunov, or the workflow's model-exponent file of the run)"
         ),
     )
     parser.set_defaults(func=analyze_command)
@@ -114,6 +154,23 @@ def _model_lyapunov(run: xr.Dataset, transient: int) -> xr.Dataset:
     return model_lyapunov_dataset(result, exponent_tolerances(scene))
 
 
+def _exponent_file(path: Path) -> xr.Dataset:
+    """The model exponent of a file holding one (`model_lyapunov_dataset`'s variables);
+    ValueError naming the file and the variable when it holds none."""
+    from sim.results import open_run
+
+    ds = open_run(path)
+    missing = [name for name in MODEL_VARIABLES if name not in ds]
+    if missing:
+        raise ValueError(
+            f"{path}: no variable {missing[0]!r}: give a file written by `sim analyze "
+            "--model-lyapunov` or the workflow's rule model_exponent"
+        )
+    return ds[list(MODEL_VARIABLES)].assign_attrs(
+        {k: v for k, v in ds.attrs.items() if k.startswith("model_lyapunov_")}
+    )
+
+
 def analyze_command(args: argparse.Namespace) -> int:
     """Handler of ``sim analyze``; returns the exit code."""
     from sim.results import open_run, write_netcdf
@@ -124,6 +181,7 @@ def analyze_command(args: argparse.Namespace) -> int:
         check_option("--transient", args.transient, TRANSIENT)
     check_output("--output", args.output)
     run = open_run(args.run)
+    model = _exponent_file(args.model_exponent) if args.model_exponent else None
     try:
         _check_length(run, args.transient)
         transient = (
@@ -131,15 +189,29 @@ def analyze_command(args: argparse.Namespace) -> int:
             if args.transient is None
             else args.transient
         )
-        analysis = analyze_run(run, transient_revolutions=transient)
         if args.model_lyapunov:
-            model = _model_lyapunov(run, transient)
+            with interrupted_while("computing the model exponent"):
+                model = _model_lyapunov(run, transient)
+        exponent = (
+            {}
+            if model is None
+            else {
+                "model_exponent": float(model.model_lyapunov_exponent),
+                "model_stderr": float(model.model_lyapunov_stderr),
+            }
+        )
+        with interrupted_while("analysing the channels"):
+            analysis = analyze_run(run, transient_revolutions=transient, **exponent)
+        if model is not None:
             analysis = analysis.merge(model, combine_attrs="no_conflicts")
     except (OSError, ValueError, SimulationError) as error:
         print(f"sim analyze: {args.run}: {error}", file=sys.stderr)
         return 1
     write_netcdf(analysis, args.output)  # atomic: a crash leaves no partial file
     print(f"{args.output}: {run.sizes['revolution'] - 1} revolutions, {transient} dropped")
+    line = exponent_line(analysis)
+    if line:
+        print(line)
     print(verdict_table(analysis))
     return 0
 
@@ -191,6 +263,16 @@ def register_sweep(subparsers: argparse._SubParsersAction) -> argparse.ArgumentP
         ),
     )
     parser.add_argument(
+        "--indicators",
+        action="store_true",
+        help=(
+            "also each value's model exponent (Benettin, the run itself the reference, its "
+            "perturbed copy aligned over the transient's last revolutions) and each channel's "
+            "0-1 K, Poincaré period and verdict, which `sim plot` draws beneath the diagram; "
+            f"about 1.8 runs a value, simulation.revolutions ≥ the transient + {MIN_REVOLUTIONS}"
+        ),
+    )
+    parser.add_argument(
         "--label", help="short parameter name for file names (default: the key's last part)"
     )
     parser.add_argument(
@@ -216,9 +298,15 @@ def sweep_values(args: argparse.Namespace) -> list[float]:
 def sweep_command(args: argparse.Namespace) -> int:
     """Handler of ``sim sweep``; returns the exit code (errors are reported by ``sim.cli``)."""
     from sim.results import write_netcdf
-    from sim.studies.sweep import run_sweep
+    from sim.studies.model_lyapunov import DEFAULT_ALIGNMENT_REVOLUTIONS
+    from sim.studies.sweep import Indicators, run_sweep
 
     check_option("--transient", args.transient, TRANSIENT)
+    if args.indicators and args.transient < 1:
+        raise ValueError(
+            "--indicators needs --transient ≥ 1: the exponent's perturbed copy aligns over the "
+            "transient's last revolutions"
+        )
     check_output("--output", args.output)
     check_output("--out-dir", args.out_dir, directory=True)
     values = sweep_values(args)
@@ -232,6 +320,11 @@ def sweep_command(args: argparse.Namespace) -> int:
         transient_revolutions=args.transient,
         continuation=args.continuation,
         progress=not args.quiet,
+        indicators=(
+            Indicators(min(DEFAULT_ALIGNMENT_REVOLUTIONS, args.transient))
+            if args.indicators
+            else None
+        ),
     )
     write_netcdf(combined, args.output)
     print(f"{args.output}: {len(values)} values of {','.join(args.keys)}; runs in {args.out_dir}")

@@ -1,6 +1,8 @@
 """Arguments and checks shared by the subcommands of `sim`."""
 
 import argparse
+from collections.abc import Iterator
+from contextlib import contextmanager
 from pathlib import Path
 
 
@@ -27,3 +29,16 @@ def check_output(option: str, path: str | Path, *, directory: bool = False) -> N
         raise ValueError(f"{option} '{path}' is a file; give a directory (created if missing)")
     if not directory and path.is_dir():
         raise ValueError(f"{option} '{path}' is a directory; give a file name")
+
+
+@contextmanager
+def interrupted_while(what: str) -> Iterator[None]:
+    """Ctrl-C inside the block raises sim.run.Interrupted saying it came ``while`` doing
+    ``what`` (and, from a run, at which simulated time)."""
+    from sim.run import Interrupted
+
+    try:
+        yield
+    except KeyboardInterrupt as stop:
+        at = f" ({stop.where})" if isinstance(stop, Interrupted) else ""
+        raise Interrupted(f"while {what}{at}") from None

@@ -10,10 +10,18 @@ the linkage locks there: the message names the crank angle and the loop whose co
 Jacobian turns singular (a dead point, where two links of the loop line up).
 """
 
+import json
+
 import numpy as np
 
-from sim.model.assembly import AssemblyError, Layout
-from sim.model.initial import constraint_values, minimum_norm_newton, solve_velocities
+from sim.model.assembly import AssemblyError, Layout, crank_period
+from sim.model.initial import (
+    Assembly,
+    assemble,
+    constraint_values,
+    minimum_norm_newton,
+    solve_velocities,
+)
 from sim.model.system import System
 
 _STEPS = 72  # crank-angle steps per turn when nothing locks (5°: a few Newton iterations each)
@@ -23,6 +31,58 @@ _ITERATIONS = 8
 # A row of Φ_q whose weight in the near-null left singular vector exceeds this belongs to the
 # loop that locks (the other rows' weights are round-off there).
 _LOOP_WEIGHT = 1e-3
+
+
+#: scene keys that the ideal, rigid linkage's kinematics do not read: a scene differing from
+#: a checked one only in these needs no check of its own (anything else counts, so a key added
+#: later costs at most a check too many)
+_NOT_KINEMATIC = {
+    "scene": (
+        "name",
+        "description",
+        "assumptions",
+        "materials",
+        "gravity",
+        "contact",
+        "simulation",
+        "solver",
+        "output",
+    ),
+    "body": ("kind", "material", "mass", "inertia", "elements", "modes", "axial_modes", "damping"),
+    "joint": ("clearance", "bearing_radius"),
+    "drive": ("speed_rpm",),
+}
+
+
+def kinematic_key(scene: dict) -> str:
+    """What the full-turn check of a resolved scene depends on, as text: two scenes with the
+    same key assemble and turn alike (clearances, link models, speed and solver do not
+    enter: the check drives the ideal, rigid linkage through a turn of the crank angle)."""
+
+    def kept(mapping: dict, part: str) -> dict:
+        return {k: v for k, v in mapping.items() if k not in _NOT_KINEMATIC[part]}
+
+    key = kept(scene, "scene")
+    key["bodies"] = {name: kept(body, "body") for name, body in scene["bodies"].items()}
+    key["joints"] = {name: kept(joint, "joint") for name, joint in scene["joints"].items()}
+    key["drive"] = kept(scene["drive"], "drive")
+    return json.dumps(key, sort_keys=True)
+
+
+def drive_through_turn(scene: dict) -> Assembly:
+    """The ideal, rigid linkage of a validated scene assembled at t = 0
+    (:func:`sim.model.initial.assemble`) and driven through a full crank turn
+    (:func:`check_full_turn`); AssemblyError naming the loop that cannot close, or the crank
+    angle and the loop where it locks."""
+    assembly = assemble(scene)
+    check_full_turn(
+        assembly.system,
+        assembly.layout,
+        assembly.q,
+        crank_period(scene),
+        scene["drive"]["initial_angle_deg"],
+    )
+    return assembly
 
 
 def check_full_turn(

@@ -40,33 +40,40 @@ def indicators_table(combined: xr.Dataset) -> pd.DataFrame:
     return pd.DataFrame(rows)
 
 
-def _scale(unit: str) -> tuple[float, str]:
+def scaled_unit(unit: str) -> tuple[float, str]:
+    """The factor and unit a parameter is drawn in: lengths in mm, the rest as given."""
     return (MM, "mm") if unit == "m" else (1.0, unit)
 
 
 def plot_bifurcation(combined: xr.Dataset, *, label: str, unit: str, transient: int) -> Figure:
     """Bifurcation diagram of every clearance channel (joint and axis): the Poincaré samples
     of the eccentricity (mm) after ``transient`` revolutions against the swept parameter
-    (in ``unit``, clearances in mm); beneath, the model-based largest Lyapunov exponent of the
-    linkage (1/s, band: ± one standard error; filled where the channel's verdict is chaotic),
-    and beneath that the channel's 0–1 K (0 regular, 1 chaotic). A point where the joint is
-    ideal (clearance 0) has no eccentricity, no K and no verdict for it. The title names the
-    link model and integrator that drew the diagram (the dataset's ``model`` attribute)."""
-    factor, shown = _scale(unit)
+    (in ``unit``, clearances in mm); beneath, when the sweep computed its indicators, the
+    model-based largest Lyapunov exponent of the linkage (1/s, band: ± one standard error;
+    filled where the channel's verdict is chaotic), and beneath that the channel's 0–1 K
+    (0 regular, 1 chaotic). A point where the joint is ideal (clearance 0) has no
+    eccentricity, no K and no verdict for it. The title names the link model and integrator
+    that drew the diagram (the dataset's ``model`` attribute)."""
+    factor, shown = scaled_unit(unit)
     x = combined.parameter.values * factor
     joints = [str(j) for j in combined.joint.values]
     channels = [(j, a) for j in joints for a in ("x", "y")]
     samples = combined.section_eccentricity.sel(revolution=combined.revolution >= transient)
-    lam = combined.model_lyapunov_exponent.values
-    err = combined.model_lyapunov_stderr.values
+    indicators = "model_lyapunov_exponent" in combined
     columns = max(len(channels), 1)
     with style.style():
-        fig = style.figure(2.6 * columns + 0.5, 6.4)
+        fig = style.figure(2.6 * columns + 0.5, 6.4 if indicators else 3.4)
         axes = np.asarray(
-            fig.subplots(3, columns, sharex=True, height_ratios=(2, 1, 1), squeeze=False)
+            fig.subplots(
+                3 if indicators else 1,
+                columns,
+                sharex=True,
+                height_ratios=(2, 1, 1) if indicators else None,
+                squeeze=False,
+            )
         )
         for col, (joint, axis) in enumerate(channels):
-            top, middle, bottom = axes[:, col]
+            top = axes[0, col]
             where = {"joint": joint, "axis": axis}
             values = samples.sel(where).values * MM
             xs = np.broadcast_to(x[:, None], values.shape)
@@ -74,21 +81,32 @@ def plot_bifurcation(combined: xr.Dataset, *, label: str, unit: str, transient: 
             top.plot(xs[finite], values[finite], ".", color="k", ms=style.POINT / 2)
             top.set_title(f"{joint} {axis}")
             top.set_ylabel("Poincaré eccentricity [mm]" if col == 0 else "")
-            chaotic = combined.verdict.sel(where).values == "chaotic"
-            middle.axhline(0.0, color=style.BOUND, lw=style.LINE)
-            middle.fill_between(x, lam - err, lam + err, color=style.CLEARANCE, alpha=0.25, lw=0)
-            middle.plot(x, lam, color=style.CLEARANCE, lw=style.LINE)
-            middle.plot(x[chaotic], lam[chaotic], "o", color=style.CLEARANCE, ms=style.POINT)
-            middle.set_ylabel("model exponent [1/s]" if col == 0 else "")
-            K = combined.zero_one_K.sel(where).values
-            bottom.axhline(0.5, color=style.BOUND, lw=style.LINE, ls="--")
-            bottom.plot(x, K, ".-", color=style.IDEAL, lw=style.LINE / 2, ms=style.POINT)
-            bottom.set_ylim(-0.1, 1.1)
-            bottom.set_ylabel("0–1 test K" if col == 0 else "")
-            bottom.set_xlabel(f"{label} [{shown}]")
+            axes[-1, col].set_xlabel(f"{label} [{shown}]" if shown else label)
+            if indicators:
+                _indicator_panels(combined, where, x, axes[1:, col], first=col == 0)
+        note = "filled: verdict chaotic; " if indicators else "no indicators computed; "
         fig.suptitle(
             f"{combined.attrs.get('title', 'bifurcation')}: {combined.sizes['parameter']} points, "
             f"{combined.attrs.get('model', 'model not recorded')}\n"
-            f"(filled: verdict chaotic; first {transient} revolutions dropped)"
+            f"({note}first {transient} revolutions dropped)"
         )
     return fig
+
+
+def _indicator_panels(combined: xr.Dataset, where: dict, x: np.ndarray, axes, first: bool):
+    """The model exponent (1/s, ± one standard error, filled where the channel is chaotic) and
+    the channel's 0–1 K against the parameter, on the two ``axes`` beneath its diagram."""
+    middle, bottom = axes
+    lam = combined.model_lyapunov_exponent.values
+    err = combined.model_lyapunov_stderr.values
+    chaotic = combined.verdict.sel(where).values == "chaotic"
+    middle.axhline(0.0, color=style.BOUND, lw=style.LINE)
+    middle.fill_between(x, lam - err, lam + err, color=style.CLEARANCE, alpha=0.25, lw=0)
+    middle.plot(x, lam, color=style.CLEARANCE, lw=style.LINE)
+    middle.plot(x[chaotic], lam[chaotic], "o", color=style.CLEARANCE, ms=style.POINT)
+    middle.set_ylabel("model exponent [1/s]" if first else "")
+    K = combined.zero_one_K.sel(where).values
+    bottom.axhline(0.5, color=style.BOUND, lw=style.LINE, ls="--")
+    bottom.plot(x, K, ".-", color=style.IDEAL, lw=style.LINE / 2, ms=style.POINT)
+    bottom.set_ylim(-0.1, 1.1)
+    bottom.set_ylabel("0–1 test K" if first else "")

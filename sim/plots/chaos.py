@@ -33,7 +33,8 @@ def _labels(ax, analysis: xr.Dataset, value: str, rate: str) -> None:
 
 def plot_phase(analysis: xr.Dataset) -> Figure:
     """Phase portrait of every channel after the transient: eccentricity (mm) against its rate
-    (m/s), with the verdict and largest Lyapunov exponent (1/s) in each title."""
+    (m/s), with the verdict and the channel's largest Lyapunov exponent (1/s, Rosenstein) in
+    each title, and the model's exponent in the figure's title when the analysis has it."""
     with style.style():
         fig, axes = _axes(analysis)
         for ax, channel in zip(axes, analysis.channel.values, strict=False):
@@ -44,12 +45,19 @@ def plot_phase(analysis: xr.Dataset) -> Figure:
                 color=style.CLEARANCE,
                 lw=0.3,
             )
-            ax.set_title(
-                f"{channel}: {one.verdict.item()}, λ = {float(one.lyapunov_exponent):.3g} 1/s"
-            )
+            exponent = float(one.lyapunov_exponent)
+            series = "λ not estimated" if np.isnan(exponent) else f"λ = {exponent:.3g} 1/s"
+            ax.set_title(f"{channel}: {one.verdict.item()}, {series}")
             _labels(ax, analysis, "phase_eccentricity", "phase_eccentricity_rate")
+        model = (
+            f"; model exponent {float(analysis.model_lyapunov_exponent):.3g} ± "
+            f"{float(analysis.model_lyapunov_stderr):.2g} 1/s"
+            if "model_lyapunov_exponent" in analysis
+            else ""
+        )
         fig.suptitle(
-            f"Phase portraits after {analysis.attrs['transient_revolutions']} transient revolutions"
+            f"Phase portraits after {analysis.attrs['transient_revolutions']} transient "
+            f"revolutions{model}"
         )
     return fig
 

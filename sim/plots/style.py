@@ -4,11 +4,15 @@ Figures are ``matplotlib.figure.Figure`` objects built without pyplot, so they r
 Agg backend in any session (batch jobs, tests) and hold no global state.
 """
 
+import io
 from contextlib import contextmanager
+from pathlib import Path
 
 import matplotlib as mpl
 import xarray as xr
 from matplotlib.figure import Figure
+
+from sim.atomic import write_atomically
 
 #: colour of the simulated mechanism with clearances
 CLEARANCE = "#c0392b"
@@ -71,7 +75,24 @@ def label(data: xr.DataArray, prefix: str = "", scale_units: str | None = None) 
     return f"{text} [{units}]" if units else text
 
 
-def save(fig: Figure, path) -> None:
-    """Write a figure as PNG at the shared resolution."""
+#: the figure formats written, by file suffix
+FORMATS = ("png", "svg")
+
+
+def png_bytes(fig: Figure) -> bytes:
+    """A figure as PNG at the shared resolution, in memory (to embed in a page)."""
+    buffer = io.BytesIO()
     with style():
-        fig.savefig(path, dpi=DPI)
+        fig.savefig(buffer, dpi=DPI, format="png")
+    return buffer.getvalue()
+
+
+def save(fig: Figure, path) -> None:
+    """Write a figure at the shared resolution in the format its suffix names (``FORMATS``),
+    through a temporary file: no reader sees it half-written."""
+    path = Path(path)
+    kind = path.suffix.lstrip(".").lower()
+    if kind not in FORMATS:
+        raise ValueError(f"{path}: a figure is written as {' or '.join(FORMATS)}, not {kind!r}")
+    with style():
+        write_atomically(path, lambda temporary: fig.savefig(temporary, dpi=DPI, format=kind))

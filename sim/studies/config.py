@@ -134,6 +134,14 @@ def study_settings(config: Mapping, name: str) -> dict:
 
 def _check(name: str, settings: Mapping) -> None:
     """Refuse settings that cannot run, naming the config key."""
+    model = settings["model"]
+    if model and model["links"] != "rigid" and not model.get("flexible_bodies"):
+        bodies = ", ".join(scene_kinds(settings["scene"]))
+        raise ConfigError(
+            f"config: studies.{name}.model.flexible_bodies: links: {model['links']} needs the "
+            f"bodies of scene {settings['scene']!r} it makes flexible (its bodies: {bodies}); "
+            "a study on a scene of its own gets no flexible bodies from the config's `model`"
+        )
     exponent = settings["model_lyapunov"]
     if not 0 <= exponent["transient"] < exponent["revolutions"]:
         raise ConfigError(
@@ -295,12 +303,31 @@ def member_draw(settings: Mapping, member: int) -> dict[str, Any]:
     return draw
 
 
+def has_flexible_links(settings: Mapping) -> bool:
+    """Whether some case of a study runs a beam or a modal link (its scene's bodies, with the
+    link model's and the case's `bodies.<name>.kind` overrides)."""
+    kinds = scene_kinds(settings["scene"])
+    for case in case_names(settings):
+        overrides = case_overrides(settings, case)
+        case_kinds = {
+            body: overrides.get(f"bodies.{body}.kind", kind) for body, kind in kinds.items()
+        }
+        if any(kind != "rigid" for kind in case_kinds.values()):
+            return True
+    return False
+
+
 def exponent_links(settings: Mapping) -> list[str]:
     """The link models the members' exponents are taken on: the study's `model_lyapunov.links`
-    (the one its verdicts and claims read) first, then those of `compare` in their order."""
+    (the one its verdicts and claims read) first, then those of `compare` in their order, each
+    only where the study's mechanism has it: without flexible links there is no modal one, and
+    the run's links are the rigid ones (the first of the two named is kept)."""
     exponent = settings["model_lyapunov"]
-    primary = exponent["links"]
-    return [primary] + [links for links in exponent.get("compare", []) if links != primary]
+    named = list(dict.fromkeys([exponent["links"], *exponent.get("compare", [])]))
+    if has_flexible_links(settings):
+        return named
+    # `run` and `rigid` are then one mechanism: the first named, else that of `modal`
+    return [links for links in named if links != "modal"][:1] or ["rigid"]
 
 
 def exponent_files(settings: Mapping) -> list[tuple[str, dict]]:
@@ -315,6 +342,14 @@ def exponent_files(settings: Mapping) -> list[tuple[str, dict]]:
 
 
 # ---------------------------------------------------------------- integrators
+@cache
+def scene_kinds(scene: str) -> dict[str, str]:
+    """Each body of a scene (name or path) and its link model (`kind`) as the scene gives it."""
+    from sim.scene import load_scene
+
+    return {name: body["kind"] for name, body in load_scene(scene)["bodies"].items()}
+
+
 @cache
 def scene_method(scene: str) -> str:
     """The integrator (`solver.method`) a scene names when no override sets it."""
@@ -410,16 +445,11 @@ def exudyn_settings(settings: Mapping, case: str) -> dict[str, Any]:
 
 # ---------------------------------------------------------------- the plan's scenes
 def planned_scenes(studies: Mapping[str, Mapping]) -> list[tuple[str, str, str, dict]]:
-    """(study, case, scene, overrides) of every run the studies plan: each case, the
-    experiment's synthetic recording, and of a sweep the points of its lowest and highest
-    value (a scene key's accepted values form an interval: they cover the points between)."""
+    """(study, case, scene, overrides) of every run the studies plan: each case (each sweep
+    point) and the experiment's synthetic recording."""
     out = []
     for name, settings in studies.items():
-        cases = case_names(settings)
-        if "sweep" in settings:
-            points = sorted(sweep_points(settings), key=lambda point: point[1])
-            cases = list(dict.fromkeys([points[0][0], points[-1][0]]))
-        for case in cases:
+        for case in case_names(settings):
             out.append((name, case, settings["scene"], case_overrides(settings, case)))
         if "experiment" in settings["analyses"]:
             out.append((name, "synthetic", settings["scene"], synthetic_overrides(settings)))
@@ -428,20 +458,32 @@ def planned_scenes(studies: Mapping[str, Mapping]) -> list[tuple[str, str, str, 
 
 def check_scenes(studies: Mapping[str, Mapping]) -> None:
     """Load and validate every planned scene with its overrides, as `sim scene` does, and
-    refuse the plan at the first that cannot run (ConfigError naming study and case).
+    drive its ideal, rigid linkage through a full crank turn, as `sim run` does before it
+    integrates; refuse the plan at the first that cannot run (ConfigError naming the study,
+    the case and, for a linkage that locks, the crank angle).
 
     Each scene file is read once: load_scene(scene, overrides) is the loaded scene with the
-    overrides applied, its defaults filled in again and validated, which this does per case."""
+    overrides applied, its defaults filled in again and validated, which this does per case
+    (0.4 ms a case). The turn is driven once per distinct geometry
+    (sim.model.mobility.kinematic_key): the cases of a study usually differ in clearances,
+    link models or speed only."""
+    from sim.model.assembly import AssemblyError
+    from sim.model.mobility import drive_through_turn, kinematic_key
     from sim.scene import SceneError, load_scene, with_overrides
 
     loaded: dict[str, dict] = {}
+    turned: set[str] = set()
     for name, case, scene, overrides in planned_scenes(studies):
         texts = [f"{key}={value}" for key, value in overrides.items()]
         try:
             if scene not in loaded:
                 loaded[scene] = load_scene(scene)
-            with_overrides(loaded[scene], texts, scene)
-        except SceneError as exc:
+            resolved = with_overrides(loaded[scene], texts, scene)
+            key = kinematic_key(resolved)
+            if key not in turned:
+                drive_through_turn(resolved)
+                turned.add(key)
+        except (SceneError, AssemblyError) as exc:
             raise ConfigError(
                 f"config: studies.{name}, case {case}: its scene {scene!r} with the study's "
                 f"overrides cannot run: {exc}"
@@ -476,6 +518,58 @@ STUDY_TARGETS = {
     "chaos": ("model_exponent_csv", "model_exponent_html"),
     "crosscheck": ("crosscheck_csv", "crosscheck_html", "crosscheck_summary"),
 }
+
+
+#: the figures (workflow/rules/paths.smk) a study's front-page section shows, in order: the
+#: first one a study has is its headline; each is per case unless per study
+SECTION_FIGURES = (
+    ("bifurcation", "bifurcation_figure", False),
+    ("responses", "responses", True),
+    ("trajectories", "trajectories", True),
+    ("chaos", "phase", True),
+    ("chaos", "poincare", True),
+    ("work_precision", "work_precision_figure", False),
+    ("experiment", "comparison_overlay", True),
+    ("experiment", "comparison_spectra", True),
+)
+
+
+#: the analyses that read each case's nominal run (so that a section may read it too)
+RUN_ANALYSES = ("responses", "trajectories", "chaos", "peaks", "experiment")
+
+
+def section_files(name: str, settings: Mapping) -> dict[str, list[tuple[str, dict]]]:
+    """(file name, wildcards) of what study `name`'s section of the front page reads
+    (sim.sections.StudyFiles): its cases' runs, their chaos analyses, its model exponent
+    table, its sweep's dataset and its figures (`SECTION_FIGURES`)."""
+    analyses = settings["analyses"]
+    study = {"study": name}
+    cases = [{"study": name, "case": case} for case in case_names(settings)]
+    sweep = "sweep" in settings
+    figures = [
+        (file, wildcards)
+        for analysis, file, per_case in SECTION_FIGURES
+        if analysis in analyses
+        for wildcards in (cases if per_case else [study])
+    ]
+    with_runs = not sweep and any(a in analyses for a in RUN_ANALYSES)
+    return {
+        "runs": [("run", wildcards) for wildcards in cases] if with_runs else [],
+        "analyses": [("analysis", w) for w in cases] if "chaos" in analyses else [],
+        "exponents": [("model_exponent_csv", study)] if "chaos" in analyses else [],
+        "sweep": [("bifurcation", study)] if "bifurcation" in analyses else [],
+        "figures": figures,
+    }
+
+
+def analysis_exponent(settings: Mapping, case: str) -> list[tuple[str, dict]]:
+    """(file name, wildcards) of the model exponent a case's chaos analysis reads: its
+    nominal run's (member 0) on the study's primary link model, for a study with `chaos`
+    (whose members' exponents are computed); none otherwise."""
+    if "chaos" not in settings["analyses"]:
+        return []
+    links = exponent_links(settings)[0]
+    return [("model_exponent", {"case": case, "links": links, "member": 0})]
 
 
 def has_clearance(settings: Mapping, case: str) -> bool:

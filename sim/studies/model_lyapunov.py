@@ -374,6 +374,7 @@ def run_with_exponent(
     d0: float = DEFAULT_D0,
     interval_revolutions: float = DEFAULT_INTERVAL_REVOLUTIONS,
     progress: bool = False,
+    announce_assembly: bool = True,
 ) -> tuple[xr.Dataset, State, BenettinResult]:
     """A run of ``scene`` (:func:`sim.run.simulate_from`) and the largest Lyapunov exponent
     (1/s) of its revolutions after ``transient_revolutions``, the run itself being the
@@ -420,6 +421,7 @@ def run_with_exponent(
         d0: separation after every renormalisation (m, metric of :class:`LinkagePropagator`).
         interval_revolutions: renormalisation interval in crank revolutions.
         progress: show the run's progress line.
+        announce_assembly: with ``progress``, say which assembly branch was taken.
 
     Returns:
         The run's output Dataset and final state (as :func:`sim.run.simulate_from`) and the
@@ -430,7 +432,9 @@ def run_with_exponent(
             f"alignment_revolutions = {alignment_revolutions} must lie in "
             f"(0, transient_revolutions = {transient_revolutions}]"
         )
-    run = Run(scene, start, progress=progress, step_log=STEP_LOG)
+    run = Run(
+        scene, start, progress=progress, step_log=STEP_LOG, announce_assembly=announce_assembly
+    )
     if not transient_revolutions < run.revolutions:
         raise ValueError(
             f"transient_revolutions = {transient_revolutions} must be below the run's "

@@ -7,6 +7,7 @@ the worker processes of one job (:mod:`sim.studies.batch`)."""
 import functools
 import json
 import sys
+import time
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
@@ -21,8 +22,8 @@ from sim.analysis.bifurcation import (
 )
 from sim.model.continuation import ContinuationError, State
 from sim.results import write_netcdf
-from sim.run import simulate_from
-from sim.scene import load_scene
+from sim.run import Interrupted, simulate_from
+from sim.scene import key_field, load_scene
 from sim.studies.batch import contiguous_chunks, run_batch
 from sim.studies.model_lyapunov import run_with_exponent
 
@@ -48,17 +49,20 @@ def simulate_point(
     transient_revolutions: int,
     indicators: Indicators | None,
     progress: bool = False,
+    announce_assembly: bool = True,
 ) -> tuple[xr.Dataset, State, xr.Dataset | None]:
     """One sweep point: its run and final state (:func:`sim.run.simulate_from`) and, with
-    ``indicators``, its chaos indicators (None without)."""
+    ``indicators``, its chaos indicators (None without); with ``progress``, its progress line
+    and, if ``announce_assembly``, the assembly branch it took."""
+    shown = {"progress": progress, "announce_assembly": announce_assembly}
     if indicators is None:
-        return *simulate_from(scene, start, progress=progress), None
+        return *simulate_from(scene, start, **shown), None
     run, final, exponent = run_with_exponent(
         scene,
         start,
         transient_revolutions=transient_revolutions,
         alignment_revolutions=indicators.alignment_revolutions,
-        progress=progress,
+        **shown,
     )
     extra = section_indicators(run, transient_revolutions, exponent.exponent, exponent.stderr)
     return run, final, extra
@@ -148,14 +152,16 @@ def run_sweep(
         transient_revolutions: revolutions a reader should drop before plotting; recorded
             in the combined dataset (every revolution is kept); the indicators drop them.
         continuation: start each value from the previous value's final state (in its chunk).
-        progress: show each run's progress line.
+        progress: with one worker, announce each value with the sweep's time left, show each
+            run's progress line and the first run's assembly branch.
         workers: worker processes sharing the values.
         indicators: compute each value's chaos indicators (:func:`simulate_point`).
         file_names: the run file of each value in ``out_dir`` (default ``point_file``).
 
     Returns:
         The bifurcation dataset of :func:`sim.analysis.bifurcation.combine_sweep` (dimension
-        ``parameter``), with the scene, overrides, transient and run files as attributes.
+        ``parameter``, its unit the swept key's), with the label, scene, overrides, transient
+        and run files as attributes.
     """
     if not keys:
         raise ValueError("sim sweep: give at least one --key to sweep")
@@ -186,6 +192,8 @@ def run_sweep(
         if continuation
         else [range(i, i + 1) for i in range(len(values))]
     )
+    # one worker runs the values in order: the progress lines and Ctrl-C can name the point
+    schedule = SweepClock(len(values), time.perf_counter()) if workers == 1 else None
     tasks = [
         functools.partial(
             _run_chunk,
@@ -195,9 +203,10 @@ def run_sweep(
             label=label,
             transient_revolutions=transient_revolutions,
             continuation=continuation,
-            progress=progress and workers == 1,
-            announce=progress,
             indicators=indicators,
+            first=chunk.start,
+            clock=schedule,
+            progress=progress,
         )
         for chunk in chunks
     ]
@@ -208,7 +217,11 @@ def run_sweep(
         values,
         [extra for _, extra in points] if indicators else None,
     )
+    field = key_field(scenes[0], keys[0])
+    if field is not None and field.unit:
+        combined.parameter.attrs["units"] = field.unit
     combined.attrs.update(
+        label=label,
         scene=scene_source,
         overrides=json.dumps(list(overrides)),
         transient_revolutions=transient_revolutions,
@@ -219,6 +232,26 @@ def run_sweep(
     return combined
 
 
+@dataclass(frozen=True)
+class SweepClock:
+    """What a sweep's progress lines need: its number of points and its start (s,
+    ``time.perf_counter``), the points running one after the other in order."""
+
+    total: int
+    started: float
+
+    def line(self, index: int, label: str, value: float, path: Path) -> str:
+        """The line announcing point ``index`` (from 0): which of how many, where it goes, and
+        the sweep's time left, from the mean time of the points finished."""
+        elapsed = time.perf_counter() - self.started
+        left = (
+            f"{index} done in {elapsed:.0f} s, ~{elapsed / index * (self.total - index):.0f} s left"
+            if index
+            else "the first point sets the estimate of the time left"
+        )
+        return f"point {index + 1} of {self.total}: {label} = {value:g}, to {path}; {left}"
+
+
 def _run_chunk(
     scenes: Sequence[dict],
     values: Sequence[float],
@@ -227,30 +260,44 @@ def _run_chunk(
     label: str,
     transient_revolutions: int,
     continuation: bool,
-    progress: bool,
     indicators: Indicators | None,
-    announce: bool = False,
+    first: int = 0,
+    clock: SweepClock | None = None,
+    progress: bool = False,
 ) -> list[tuple[xr.Dataset, xr.Dataset | None]]:
     """Run consecutive sweep values in order, continuing along them if asked; write each run
     and return each value's section variables and indicators (None without ``indicators``).
-    With ``announce``, a line on stderr names each value as its run starts."""
+    ``first``: the index of the chunk's first value in the sweep. With a ``clock`` (the
+    values run one after the other) Ctrl-C raises :class:`sim.run.Interrupted` naming the
+    point and what the sweep kept, and with ``progress`` a line on stderr announces each value
+    as its run starts with the sweep's time left, each run shows its progress line and the
+    first says which assembly branch it took."""
     points = []
     final, previous_value = None, None
-    for scene, value, path in zip(scenes, values, paths, strict=True):
-        if announce:
-            print(f"{label} = {value:g}: running, to {path}", file=sys.stderr, flush=True)
+    for k, (scene, value, path) in enumerate(zip(scenes, values, paths, strict=True)):
+        index = first + k
         start, origin = None, "assembled"
         if continuation and final is not None:
             start, origin = final, f"continued from {label} = {previous_value:g}"
+        shown = (transient_revolutions, indicators, progress and clock is not None, index == 0)
         try:
-            run, final, extra = simulate_point(
-                scene, start, transient_revolutions, indicators, progress
-            )
-        except ContinuationError as why:
-            run, final, extra = simulate_point(
-                scene, None, transient_revolutions, indicators, progress
-            )
-            origin = f"assembled: no continuation from {label} = {previous_value:g}, {why}"
+            if clock is not None and progress:
+                print(clock.line(index, label, value, path), file=sys.stderr, flush=True)
+            try:
+                run, final, extra = simulate_point(scene, start, *shown)
+            except ContinuationError as why:
+                run, final, extra = simulate_point(scene, None, *shown)
+                origin = f"assembled: no continuation from {label} = {previous_value:g}, {why}"
+        except KeyboardInterrupt as stop:
+            if clock is None:
+                raise
+            at = f", {stop.where}" if isinstance(stop, Interrupted) else ""
+            done = "point 1" if index == 1 else f"points 1–{index}"
+            raise Interrupted(
+                f"at point {index + 1} of {clock.total} ({label} = {value:g}){at}",
+                (f"kept the run files of {done} in {path.parent}; " if index else "")
+                + "no bifurcation dataset written",
+            ) from None
         run.attrs["initial_state"] = origin
         previous_value = value
         write_netcdf(run, path)

@@ -74,7 +74,8 @@ def test_peak_claims_are_tests_with_intervals(tmp_path):
     # studies not run are not evaluated, and say so
     assert by_claim[claims[0]["claim"]]["verdict"] == NOT_EVALUATED
     assert meta == {}
-    assert all(set(row) == {"claim", "verdict", "intervals", "evidence"} for row in claims)
+    fields = {"claim", "short", "verdict", "key", "intervals", "evidence"}
+    assert all(set(row) == fields for row in claims)
 
 
 def test_nothing_run_evaluates_nothing():

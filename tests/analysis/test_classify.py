@@ -5,6 +5,7 @@ import math
 import pytest
 
 from sim.analysis.classify import MIN_GROWTH_PER_TIME_SCALE, SIGNIFICANCE, classify, lyapunov_vote
+from sim.analysis.section import SectionEvidence
 
 #: the flagship's crank period at 150 rpm (s)
 PERIOD = 0.4
@@ -35,16 +36,16 @@ def test_the_regular_vote_needs_the_whole_interval_below_the_least_growth():
     assert lyapunov_vote(below * 1.001, stderr, PERIOD) is None
 
 
-def _verdict(**kw):
+def _verdict(section_period=0, held=False, state_period=0, **kw):
     args = dict(
         lyapunov_exponent=math.nan,
         lyapunov_stderr=math.nan,
         zero_one_K=math.nan,
-        section_period=0,
-        section_return_distance=0.5,
         time_scale=PERIOD,
     )
-    return classify(**{**args, **kw})
+    distance = 1e-3 if section_period else 0.5
+    section = SectionEvidence(section_period, distance, held, state_period, 0.3)
+    return classify(section=section, **{**args, **kw})
 
 
 def test_an_undecided_exponent_leaves_the_verdict_to_the_zero_one_test():
@@ -69,3 +70,21 @@ def test_the_model_exponent_comes_first_and_the_section_period_before_all():
     assert v.agreement == pytest.approx(2 / 3)  # the section and the model, not K
     assert _verdict(zero_one_K=0.1).verdict == "quasi-periodic"
     assert _verdict(section_period=1, **chaotic_model).verdict == "periodic"
+
+
+def test_a_channel_held_by_its_wall_is_periodic_only_when_the_state_returns():
+    """A slider resting on its wall at the section repeats there whatever the mechanism does:
+    with the state not returning, neither its section nor the 0-1 test on its pinned values
+    votes, and a decided exponent gives the verdict; with the state returning, it is periodic."""
+    pinned = dict(section_period=1, held=True, zero_one_K=0.02)
+    chaotic = _verdict(model_exponent=212.0, model_stderr=5.0, **pinned)
+    assert chaotic.verdict == "chaotic"
+    assert chaotic.evidence["zero_one_vote"] == "none"
+    reason = chaotic.evidence["reason"]
+    assert "resting on its clearance bound" in reason and "does not return" in reason
+    assert "model exponent 212 ± 5 1/s votes chaotic" in reason
+    assert "0–1 test K = 0.02 not read" in reason
+    assert _verdict(**pinned).verdict == "undecided"
+    assert _verdict(state_period=2, **pinned).verdict == "periodic"
+    # a channel that no wall holds keeps its section's verdict, as before
+    assert _verdict(section_period=1, model_exponent=212.0, model_stderr=5.0).verdict == "periodic"

@@ -1,13 +1,16 @@
 """analyze_run, combine_sweep and the `sim analyze` subcommand on synthetic runs."""
 
 import argparse
+import json
 
 import numpy as np
 import pytest
 import xarray as xr
+from conftest import SAMPLES_PER_REVOLUTION, run_dataset
 
 from sim.analysis.bifurcation import combine_sweep
 from sim.analysis.run import analyze_run
+from sim.cli import main
 from sim.cli.analyze import register
 from sim.studies.model_lyapunov import DEFAULT_TOLERANCES
 
@@ -130,7 +133,7 @@ def sixbar_ideal_file(tmp_path_factory):
     return write_netcdf(simulate(scene), tmp_path_factory.mktemp("sixbar") / "ideal.nc")
 
 
-def test_simulated_ideal_sixbar_is_periodic(sixbar_ideal_file, tmp_path):
+def test_simulated_ideal_sixbar_is_periodic(sixbar_ideal_file, tmp_path, capsys):
     # Issue 3, check 5: a driven mechanism without clearance repeats every revolution; every
     # body channel must be periodic with period 1. The model's own exponent (Benettin on the
     # run's scene): perturbations only violate the constraints, which Baumgarte stabilisation
@@ -151,3 +154,88 @@ def test_simulated_ideal_sixbar_is_periodic(sixbar_ideal_file, tmp_path):
         assert abs(exponent - (-10.0 + np.log(6.0) / 10.0)) < 0.01
         # the built-in six-bar's integrator is DOPRI5
         assert analysis.attrs["model_lyapunov_rtol"] == DEFAULT_TOLERANCES["dopri5"][0]
+    # printed with its standard error, and read by every verdict's reason
+    printed = capsys.readouterr().out
+    assert f"model exponent {exponent:.3g} ± {stderr:.2g} 1/s" in printed
+    assert printed.count(f"model exponent {exponent:.3g} ± {stderr:.2g} 1/s votes regular") == 10
+    # the same exponent read back from that file: the same verdicts, not computed again
+    again = tmp_path / "again.nc"
+    assert main([*argv[:3], str(again), "--transient", "5", "--model-exponent", str(out_file)]) == 0
+    with xr.open_dataset(out_file) as first, xr.open_dataset(again) as second:
+        assert float(second.model_lyapunov_exponent) == float(first.model_lyapunov_exponent)
+        assert (second.verdict_reason == first.verdict_reason).all()
+    # a file without an exponent is refused before anything is computed, naming the variable
+    assert (
+        main([*argv[:3], str(tmp_path / "x.nc"), "--model-exponent", str(sixbar_ideal_file)]) == 2
+    )
+    assert "'model_lyapunov_exponent'" in capsys.readouterr().err
+    assert not (tmp_path / "x.nc").exists()
+
+
+#: the slider's clearance across its guide in ``wall_run`` (m)
+WALL_CLEARANCE = 2e-4
+
+
+def _wall_run(duffing_run: xr.Dataset, joint_a_chaotic: bool) -> xr.Dataset:
+    """A run with a revolute clearance joint A and a slider B whose across-guide channel B.x
+    rests on its wall (−c) at every section instant and leaves it in between by an amount that
+    follows A's x (so it is as irregular as A); B.y moves along the guide periodically. With
+    ``joint_a_chaotic`` False, A moves periodically (the whole state returns)."""
+    time = duffing_run.time.values
+    period = float(duffing_run.attrs["crank_period"])
+    a = duffing_run.eccentricity.sel(joint="A")
+    a_rate = duffing_run.eccentricity_rate.sel(joint="A")
+    if not joint_a_chaotic:
+        a = a.copy(data=np.stack([a.sel(axis="y").values] * 2, axis=-1))
+        a_rate = a_rate.copy(data=np.stack([a_rate.sel(axis="y").values] * 2, axis=-1))
+    lift = np.sin(np.pi * time / period) ** 2  # 0 at every section instant
+    lift_rate = np.pi / period * np.sin(2 * np.pi * time / period)
+    size = np.abs(a.sel(axis="x").values) / 1e-4  # A's x, of order 1, irregular when A is
+    size_rate = np.sign(a.sel(axis="x").values) * a_rate.sel(axis="x").values / 1e-4
+    across = -WALL_CLEARANCE + 0.5 * WALL_CLEARANCE * lift * size
+    across_rate = 0.5 * WALL_CLEARANCE * (lift_rate * size + lift * size_rate)
+    along = 0.05 * np.cos(2 * np.pi * time / period)
+    along_rate = -0.1 * np.pi / period * np.sin(2 * np.pi * time / period)
+    slider = np.stack([np.stack([across, across_rate], -1), np.stack([along, along_rate], -1)], 1)
+    joint_a = np.stack([a.values, a_rate.values], axis=-1)
+    bodies = {
+        name: np.stack(
+            [duffing_run.position.sel(body=name), duffing_run.velocity.sel(body=name)], -1
+        )
+        for name in duffing_run.body.values
+    }
+    run = run_dataset(period, SAMPLES_PER_REVOLUTION, {"A": joint_a, "B": slider}, bodies)
+    scene = {
+        "joints": {
+            "A": {"type": "revolute", "clearance": 1e-4},
+            "B": {"type": "translational", "clearance": WALL_CLEARANCE},
+        }
+    }
+    return run.assign_attrs(scene=json.dumps(scene))
+
+
+def test_a_slider_resting_on_its_wall_at_the_section_is_not_called_periodic(duffing_run):
+    """B.x sits at −c at every section instant, so its own Poincaré points repeat exactly, but
+    the mechanism (A) does not return: B.x is not periodic, and the 0–1 test on its pinned
+    section values does not vote; B.y, which no wall bounds, keeps its periodic verdict. With
+    A periodic the whole state returns, and B.x is periodic."""
+    analysis = analyze_run(_wall_run(duffing_run, True), transient_revolutions=TRANSIENT)
+    across = analysis.sel(channel="B.x")
+    assert int(across.section_period) == 1  # its own points repeat: the wall holds them
+    assert int(across.section_held) == 1 and int(across.state_period) == 0
+    assert str(across.verdict.item()) != "periodic"
+    assert "not read as periodic" in str(across.verdict_reason.item())
+    assert str(analysis.verdict.sel(channel="A.x").item()) == "chaotic"
+    assert str(analysis.verdict.sel(channel="B.y").item()) == "periodic"
+    assert int(analysis.section_held.sel(channel="B.y")) == 0
+    # the model's own exponent, decided positive, then gives B.x its verdict
+    with_model = analyze_run(
+        _wall_run(duffing_run, True),
+        transient_revolutions=TRANSIENT,
+        model_exponent=212.0,
+        model_stderr=5.0,
+    )
+    assert str(with_model.verdict.sel(channel="B.x").item()) == "chaotic"
+    regular = analyze_run(_wall_run(duffing_run, False), transient_revolutions=TRANSIENT)
+    assert int(regular.state_period.sel(channel="B.x")) > 0
+    assert str(regular.verdict.sel(channel="B.x").item()) == "periodic"

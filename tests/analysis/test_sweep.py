@@ -1,5 +1,7 @@
 """`sim sweep`: one scene over a parameter, every run written, the Poincaré samples stacked."""
 
+import re
+
 import numpy as np
 import pytest
 import xarray as xr
@@ -51,16 +53,24 @@ def test_speed_sweep_of_the_ideal_sixbar(tmp_path, continuation):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["bifurcation.nc", "runs"]
 
 
-def test_the_progress_names_each_value(tmp_path, capsys):
+def test_the_progress_counts_the_points_and_reports_the_assembly_once(tmp_path, capsys):
+    """Each point is announced as "point k of N" with where it goes and, from the second on,
+    the time the sweep has left; a scene without hints says which assembly branch it took
+    once, not at every point."""
     out_dir = tmp_path / "runs"
     argv = ["sweep", "slider-crank", "--set", "simulation.revolutions=1", "--transient", "0"]
-    argv += ["--key", "drive.speed_rpm", "--values", "60", "120", "--out-dir", str(out_dir)]
-    assert main([*argv, "-o", str(tmp_path / "b.nc")]) == 0
-    lines = [x for x in capsys.readouterr().err.splitlines() if ": running, to " in x]
-    assert lines == [
-        f"speed_rpm = {value}: running, to {out_dir / f'speed_rpm-{value}.nc'}"
-        for value in (60, 120)
+    argv += ["--set", "bodies.rod.hint=null", "--set", "bodies.slider.hint=null"]
+    argv += ["--key", "drive.speed_rpm", "--values", "60", "120", "180"]
+    assert main([*argv, "--out-dir", str(out_dir), "-o", str(tmp_path / "b.nc")]) == 0
+    lines = capsys.readouterr().err.splitlines()
+    announced = [line for line in lines if line.startswith("point ")]
+    assert [line.split(";")[0] for line in announced] == [
+        f"point {k} of 3: speed_rpm = {value}, to {out_dir / f'speed_rpm-{value}.nc'}"
+        for k, value in ((1, 60), (2, 120), (3, 180))
     ]
+    for k, line in enumerate(announced[1:], start=1):
+        assert re.search(rf"; {k} done in \d+ s, ~\d+ s left$", line), line
+    assert sum(line.startswith("assembly: ") for line in lines) == 1
 
 
 def test_clearance_sweep_through_the_ideal_joint(tmp_path):

@@ -45,7 +45,8 @@ def fake_simulator(monkeypatch: pytest.MonkeyPatch) -> list:
     }
     run_module = types.ModuleType("sim.run")
     run_module.simulate = lambda scene, progress=False: calls.append("simulate") or _run()
-    run_module.SimulationError = RuntimeError  # what `sim.cli.main` imports
+    # what `sim.cli.main` imports
+    run_module.SimulationError, run_module.Interrupted = RuntimeError, KeyboardInterrupt
     monkeypatch.setattr(
         "sim.scene.load_scene",
         lambda name, overrides=(): calls.append((name, overrides)) or {"name": name, **scene},

@@ -257,6 +257,51 @@ def test_the_plan_refuses_a_scene_that_cannot_run():
         resolver.check_scenes(resolver.resolve(config))
 
 
+def test_flexible_links_without_their_bodies_are_refused_on_another_scene():
+    # the config's `model` names the default scene's bodies: a study on its own scene that
+    # asks for beams or modal links must name its own, or it would run rigid unawares
+    for links in ("beam", "modal"):
+        config = _config(scene="slider-crank", model={"links": links}, cases={"c": {}})
+        with pytest.raises(resolver.ConfigError) as error:
+            resolver.study_settings(config, "s")
+        message = str(error.value)
+        assert message.startswith("config: studies.s.model.flexible_bodies: links: " + links)
+        assert "(its bodies: crank, rod, slider)" in message
+
+
+def test_exponent_link_models_a_scene_does_not_have_are_not_computed():
+    """On a mechanism without flexible links a modal exponent would be the rigid one again,
+    and `run` is `rigid`: one exponent, on the first of them named."""
+    lyapunov = {"links": "modal", "compare": ["rigid"]}
+    rigid = _config(scene="slider-crank", model_lyapunov=lyapunov, cases={"c": {}})
+    settings = resolver.study_settings(rigid, "s")
+    assert resolver.exponent_links(settings) == ["rigid"]
+    assert [w["links"] for _, w in resolver.exponent_files(settings)] == ["rigid"]
+    both = {"links": "run", "compare": ["modal", "rigid"]}
+    settings = resolver.study_settings(_config(scene="slider-crank", model_lyapunov=both), "s")
+    assert resolver.exponent_links(settings) == ["run"]
+    # a flexible body, from the study's link model or from one case, brings the modal one back
+    model = {"links": "beam", "flexible_bodies": ["rod"]}
+    flexible = _config(scene="slider-crank", model=model, model_lyapunov=lyapunov)
+    assert resolver.exponent_links(resolver.study_settings(flexible, "s")) == ["modal", "rigid"]
+    cases = {"c": {}, "beam": {"bodies.rod.kind": "beam"}}
+    one_case = _config(scene="slider-crank", model_lyapunov=lyapunov, cases=cases)
+    assert resolver.exponent_links(resolver.study_settings(one_case, "s")) == ["modal", "rigid"]
+
+
+def test_the_plan_refuses_a_linkage_that_locks_naming_the_case_and_the_crank_angle():
+    # tests/model/test_mobility.py: the four-bar with a 0.28 m crank is not Grashof and locks
+    # at 145.27° (closed form); the dry run drives every planned scene through a turn
+    cases = {"short": {}, "long-crank": {"bodies.crank.length": 0.28}}
+    overrides = {"bodies.coupler.hint": "null", "bodies.rocker.hint": "null"}
+    config = _config(scene="fourbar", cases=cases, overrides=overrides)
+    with pytest.raises(resolver.ConfigError) as error:
+        resolver.check_scenes(resolver.resolve(config))
+    message = str(error.value)
+    assert message.startswith("config: studies.s, case long-crank: its scene 'fourbar'")
+    assert "locks at crank angle 145.27°" in message
+
+
 def test_the_full_config_plans_scenes_that_load():
     config = _validated(yaml.safe_load((ROOT / "config/config.yaml").read_text()))
     resolver.check_scenes(resolver.resolve(config))

@@ -36,6 +36,7 @@ def test_dry_run_full_config():
         "model_exponent",
         "model_exponent_table",
         "landing",
+        "study_section",
     ):
         assert rule in done.stdout + done.stderr
 
@@ -140,7 +141,7 @@ def _check_ensembles(work: Path) -> None:
 def _check_exponent_comparison(work: Path) -> None:
     """The members' exponents on both link models of the quick configuration (`links: rigid`,
     `compare: [modal]`): a row per case and model in the study's table, the primary one marked,
-    and both side by side on the landing page."""
+    and both side by side in the paper's section."""
     import pandas as pd
 
     table = pd.read_csv(work / "results/clearance-size/tables/model_exponent.csv")
@@ -152,11 +153,10 @@ def _check_exponent_comparison(work: Path) -> None:
     ]
     assert (table.members == 3).all()
     landing = (work / "results/report/landing.rst").read_text()
-    section = landing[landing.index("Chaos of the flexible and the rigid mechanism") :]
-    section = section[: section.index("Accelerometer data used")]
+    numbers = landing[landing.index("The exponents in numbers") :]
     for case in ("clearance-0.5mm", "clearance-0.1mm", "clearance-0.4mm"):
-        assert case in section
-    assert section.count("**rigid** (primary)") == section.count("**modal**:") == 3
+        assert case in numbers
+    assert numbers.count(">rigid (primary)<") == numbers.count(">modal<") == 3
 
 
 def _check_budget(work: Path) -> None:
@@ -190,12 +190,70 @@ def _workflow_copy(tmp_path: Path) -> Path:
     return work
 
 
-@pytest.mark.slow
-def test_quick_workflow_end_to_end(tmp_path):
-    """The quick configuration in a copy of the workflow, then the report."""
-    work = _workflow_copy(tmp_path)
-    done = _snakemake("-j2", "--configfile", "config/quick.yaml", cwd=work, timeout=3600)
+#: a user's own linkage in the quick run: the offset slider-crank press (tests/workflow/press.yaml)
+#: as a study with chaos and as a two-point sweep
+PRESS_STUDIES = """
+studies:
+  press:
+    title: Offset slider-crank press with clearance at the crank-rod joint and the slider
+    scene: press.yaml
+    cases:
+      clearance: {}
+    analyses: [responses, trajectories, chaos]
+  press-speed:
+    title: The offset press against its crank speed
+    scene: press.yaml
+    sweep: {keys: [drive.speed_rpm], label: speed, unit: rpm, values: [120.0, 200.0], batch: 2,
+            lyapunov_alignment: 1}
+    analyses: [bifurcation]
+"""
+#: words of the six-bar's studies that no other study's section may hold
+SIX_BAR_WORDS = ("six-bar", "Xiao", "rod2", "rod3", "rod4", "Table 3", "flagship", "paper")
+
+
+@pytest.fixture(scope="module")
+def quick_workflow(tmp_path_factory) -> Path:
+    """The quick configuration with the press's studies, in a copy of the workflow, then the
+    report of everything: the copy's folder."""
+    work = _workflow_copy(tmp_path_factory.mktemp("quick"))
+    shutil.copy(ROOT / "tests/workflow/press.yaml", work / "press.yaml")
+    (work / "press-studies.yaml").write_text(PRESS_STUDIES)
+    config = ("--configfile", "config/quick.yaml", "press-studies.yaml")
+    done = _snakemake("-j2", *config, cwd=work, timeout=3600)
     assert done.returncode == 0, done.stderr[-4000:]
+    report = _snakemake(*config, "--report", "report.html", cwd=work, timeout=300)
+    assert report.returncode == 0, report.stderr[-4000:]
+    return work
+
+
+def _check_report(work: Path) -> None:
+    """The report holds the paper's section and every study's, each study's title and
+    figures, and no six-bar wording in the press's sections."""
+    front = (work / "report.html").read_text()
+    assert "The paper&#x27;s claims" in front or "The paper's claims" in front
+    assert "Synthetic recording" in front or "Measured recording" in front
+    for study in ("press", "press-speed"):
+        section = (work / f"results/{study}/report/section.rst").read_text()
+        assert section.count("data:image/png;base64,") >= 1  # its figures, embedded
+        for word in SIX_BAR_WORDS:
+            assert word not in section, (study, word)
+        # the section as written is in the report: its title and its first paragraph
+        title = section.splitlines()[0]
+        assert title in front
+        first = section[section.index("<p>") + 3 : section.index("</p>")]
+        assert first.replace('"', '\\"') in front
+    press = (work / "results/press/report/section.rst").read_text()
+    assert "Offset slider-crank press with clearance" in press
+    assert "decided by" in press and "model exponent" in press
+    assert press.count("data:image/png;base64,") == 4  # responses, trajectories, phase, Poincaré
+    sweep = (work / "results/press-speed/report/section.rst").read_text()
+    assert "A sweep of drive.speed_rpm: 2 values from 120 to 200 rpm" in sweep
+
+
+@pytest.mark.slow
+def test_quick_workflow_end_to_end(quick_workflow):
+    """The quick configuration in a copy of the workflow, then the report."""
+    work = quick_workflow
     targets = _snakemake(
         "-n", "--configfile", "config/quick.yaml", "--forceall", "--quiet", "all", cwd=work
     )
@@ -225,19 +283,15 @@ def test_quick_workflow_end_to_end(tmp_path):
         "results/extremes/tables/extremes.csv",
         "results/report/landing.rst",
         "results/report/claims.csv",
+        "results/press/report/section.rst",
+        "results/press-speed/figures/bifurcation.png",
     ):
         _check_file(work / name)
     _check_ensembles(work)
     _check_exponent_comparison(work)
     _check_bifurcation(work)
     _check_budget(work)
-    report = _snakemake(
-        "--configfile", "config/quick.yaml", "--report", "report.html", cwd=work, timeout=300
-    )
-    assert report.returncode == 0, report.stderr[-4000:]
-    html = (work / "report.html").read_text()
-    assert "Claims of the paper" in html
-    assert "Synthetic recording" in html or "Measured recording" in html
+    _check_report(work)
 
 
 FOURBAR_STUDY = """
@@ -295,3 +349,105 @@ def test_quick_workflow_runs_a_four_bar_study(tmp_path):
     # the scene's own operating point, not the six-bar studies' 150 rpm and friction 0.15
     assert scene["drive"]["speed_rpm"] == 120.0
     assert scene["contact"]["friction"] == 0.1
+    # the report of the one study that ran: its section, and the others named as not in it
+    report = _snakemake("--report", "report.html", *args, cwd=work, timeout=300)
+    assert report.returncode == 0, report.stderr[-4000:]
+    html = (work / "report.html").read_text()
+    section = (study / "report/section.rst").read_text()
+    assert section.startswith("Crank-rocker four-bar, flexible coupler, 0.3 mm clearance at Q\n")
+    assert "beams coupler (2 elements)" in section
+    for word in SIX_BAR_WORDS:
+        assert word not in section, word
+    assert "Crank-rocker four-bar, flexible coupler" in html
+    assert "Configured but not in this report: all-joints, flagship" in html
+    assert "sim-paper" not in html  # the paper's section: its studies did not run
+
+
+#: the front page's layout, measured in the browser: the front's width, every table that is
+#: shown (not folded) with its columns' widths in characters of its font and its tallest row,
+#: the images (all, loaded, and those of the paper's section shown unfolded), and any "nan" or
+#: "inf" in its text
+MEASURE = """
+(() => {
+  const front = document.querySelector('.sim-front');
+  const charWidth = (cell) => {
+    const probe = document.createElement('span');
+    probe.textContent = '0'.repeat(40);
+    probe.style.font = getComputedStyle(cell).font;
+    probe.style.position = 'absolute';
+    probe.style.visibility = 'hidden';
+    document.body.appendChild(probe);
+    const width = probe.getBoundingClientRect().width / 40;
+    probe.remove();
+    return width;
+  };
+  const shown = [...front.querySelectorAll('table')].filter(t => t.getClientRects().length > 0);
+  const columns = shown.map(t => {
+    const unit = charWidth(t.rows[t.rows.length - 1].cells[0]);
+    return [...t.rows[0].cells].map(cell => cell.getBoundingClientRect().width / unit);
+  });
+  const rows = shown.flatMap(t => [...t.rows].map(r => r.getBoundingClientRect().height));
+  const images = [...front.querySelectorAll('img')];
+  const paper = document.querySelector('.sim-paper');
+  const unfolded = paper
+    ? [...paper.querySelectorAll('img')].filter(i => !i.closest('details'))
+    : [];
+  return {
+    front: front.getBoundingClientRect().width,
+    tables: shown.length,
+    narrowest: Math.min(...columns.flat()),
+    tallest: Math.max(...rows),
+    screen: window.innerHeight,
+    images: images.length,
+    loaded: images.filter(i => i.complete && i.naturalWidth > 0).length,
+    headline: unfolded.filter(i => i.complete && i.naturalWidth > 0).length,
+    missing: (front.innerText.match(/\\b(nan|inf)\\b/gi) || []).length,
+  };
+})()
+"""
+
+
+@pytest.fixture(scope="module")
+def chromium_binary() -> str:
+    """The installed Chromium; the test skips, saying so, where there is none."""
+    from browser import chromium
+
+    binary = chromium()
+    if binary is None:
+        pytest.skip(
+            "no Chromium installed (Debian: apt-get install -y chromium): the front page's "
+            "layout in a browser is not checked"
+        )
+    return binary
+
+
+@pytest.mark.slow
+def test_the_front_page_in_a_browser(chromium_binary, quick_workflow):
+    """The quick report's front page in headless Chromium at 1000 and 1400 px: no table column
+    narrower than 25 characters, no row taller than the screen (900 px), every figure loaded,
+    the paper's three headline figures shown unfolded, no "nan" or "inf" in the text.
+    Screenshots of the first screen and of the page (5000 px tall) are kept beside the
+    report, their paths printed."""
+    from browser import Browser
+
+    url = (quick_workflow / "report.html").as_uri()
+    shots = quick_workflow / "screenshots"
+    shots.mkdir(exist_ok=True)
+    with Browser(chromium_binary) as browser:
+        for width in (1000, 1400):
+            browser.open(url, width, 900)
+            browser.wait_for(".sim-front")
+            layout = browser.evaluate(MEASURE)
+            print(f"{width} px: {layout}")
+            assert layout["front"] >= 0.6 * width  # wider than the report's 512 px column
+            assert layout["tables"] >= 2  # the verdicts, and the press's channels
+            assert layout["narrowest"] >= 25 - 0.5  # the CSS's 25ch, less rounding
+            assert layout["tallest"] <= layout["screen"]
+            assert layout["images"] >= 8 and layout["loaded"] == layout["images"]
+            assert layout["headline"] == 3  # exponents, sweeps, the flagship against ideal
+            assert layout["missing"] == 0
+            first = browser.screenshot(shots / f"front-{width}px-first-screen.png")
+            browser.open(url, width, 5000)
+            browser.wait_for(".sim-front")
+            page = browser.screenshot(shots / f"front-{width}px-5000px.png")
+            print(f"screenshots: {first}, {page}")

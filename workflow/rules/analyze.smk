@@ -1,9 +1,11 @@
-# Stage 2: chaos analysis of one run (phase portraits, Poincaré points, Lyapunov exponents).
+# Stage 2: chaos analysis of one run (phase portraits, Poincaré points, Lyapunov exponents); in a
+# study with model exponents, the verdicts read the nominal run's first.
 
 
 rule analyze:
     input:
-        PATHS["run"],
+        run=PATHS["run"],
+        exponent=analysis_exponent,
     output:
         PATHS["analysis"],
     log:
@@ -18,8 +20,10 @@ rule analyze:
         runtime=30,
     params:
         transient=transient,
+        exponent=exponent_option,
     shell:
-        "sim analyze {input} -o {output} --transient {params.transient} > {log} 2>&1"
+        "sim analyze {input.run} -o {output} --transient {params.transient} {params.exponent} "
+        "> {log} 2>&1"
 
 
 # The model-based largest Lyapunov exponent (Benettin on the linkage) of every ensemble member

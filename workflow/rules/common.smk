@@ -92,6 +92,7 @@ ideal_sets = as_sets(resolver.ideal_overrides, "case")
 member_draw = resolved(resolver.member_draw, "member")
 members_of_study = files(resolver.member_files)
 model_exponents_of_study = files(resolver.exponent_files)
+analysis_exponent = files(resolver.analysis_exponent, "case")
 sweep_base_overrides = as_texts(resolver.sweep_base_overrides)
 member_overrides = as_texts(resolver.member_overrides, "case")
 fidelity_settings = resolved(resolver.fidelity_settings)
@@ -106,6 +107,12 @@ batch_points = resolved(resolver.sweep_batch, "batch")
 batch_dirs_of_study = files(resolver.batch_files)
 fidelity_analyses = files_of_cases("analysis", resolver.fidelity_long_cases)
 crosscheck_exudyn = resolved(resolver.exudyn_settings, "case")
+
+
+def exponent_option(wildcards):
+    """`sim analyze --model-exponent FILE` when the case has a model exponent, else nothing."""
+    exponent = analysis_exponent(wildcards)
+    return f"--model-exponent {shlex.quote(exponent[0])}" if exponent else ""
 
 
 def bootstrap_settings(wildcards=None):
@@ -156,7 +163,19 @@ def study_done_targets(wildcards):
 
 def all_targets():
     out = [target for name in STUDIES for target in study_targets(name)]
-    return out + [PATHS["landing"], PATHS["claims"]]
+    sections = paths_of_studies("study_section", STUDIES)
+    return out + sections + [PATHS["landing"], PATHS["claims"]]
+
+
+def section_inputs(wildcards):
+    """Named inputs of a study's section (sim.studies.config.section_files)."""
+    files = resolver.section_files(wildcards.study, SETTINGS[wildcards.study])
+    return {key: [path(file, **more) for file, more in items] for key, items in files.items()}
+
+
+def study_settings(wildcards):
+    """The resolved settings of the study (sim.studies.config)."""
+    return SETTINGS[wildcards.study]
 
 
 def landing_inputs(wildcards):
@@ -168,11 +187,6 @@ def landing_inputs(wildcards):
     if "experiment_comparison" in out:
         out["experiment_meta"] = landing_recording(wildcards)["meta"]
     return out
-
-
-def landing_page():
-    """The report's front page: the generated claims page once it exists."""
-    return PATHS["landing"] if Path(PATHS["landing"]).exists() else "report/pending.rst"
 
 
 def landing_recording(wildcards):

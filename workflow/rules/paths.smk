@@ -66,6 +66,9 @@ PATHS = {
     "model_exponent_html": f"{STUDY}/tables/model_exponent.html",
     # stage 6: report (report.smk); a study's target, every final file of the study built
     "study_done": f"{STUDY}/done",
+    # a study's section of the report's front page (report/front.rst includes it)
+    "study_section": f"{STUDY}/report/section.rst",
+    # the paper's section of the front page: its claims judged, with their figures
     "landing": f"{RESULTS}/report/landing.rst",
     "claims": f"{RESULTS}/report/claims.csv",
 }
@@ -98,6 +101,7 @@ JOBS = {
     "extremes_table": "{study}/tables/extremes",
     "model_exponent_table": "{study}/tables/model_exponent",
     "landing": "report/landing",
+    "study_section": "{study}/report/section",
     "study": "{study}/done",
 }
 
@@ -116,6 +120,11 @@ def log_file(job):
 def benchmark_file(job):
     """Benchmark pattern of the rule `job`."""
     return f"{RESULTS}/benchmarks/{JOBS[job]}.tsv"
+
+
+def paths_of_studies(name, studies):
+    """The file `name` of every study of `studies`."""
+    return [path(name, study=study) for study in studies]
 
 
 def paths_of_study(name, study_name, cases):

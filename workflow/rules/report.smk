@@ -1,28 +1,47 @@
-# Stage 6: the report's landing page. It judges each claim of docs/studies.md on our results and
-# states the assumed geometry and values and which accelerometer data was used. It is the
-# report's front page (Snakefile `report:`); `snakemake --report report.html` renders it.
+# Stage 6: the report's front page (report/front.rst, the Snakefile's `report:`), which
+# `snakemake --report report.html` renders from the sections of the studies in the report: each
+# study's own section, and the paper's (its claims judged on our results, the assumed geometry
+# and values, the accelerometer data used) when the paper's studies ran.
 
 
 localrules:
     landing,
+    study_section,
     study,
 
 
 # One study's target: `snakemake -j2 results/<study>/done` builds every final file of the study
-# (config/README.md).
+# and its section of the front page (config/README.md).
 rule study:
     input:
         study_done_targets,
+        section=PATHS["study_section"],
     output:
         touch(PATHS["study_done"]),
     log:
         log_file("study"),
 
 
+rule study_section:
+    input:
+        unpack(section_inputs),
+    output:
+        PATHS["study_section"],
+    log:
+        log_file("study_section"),
+    benchmark:
+        benchmark_file("study_section")
+    conda:
+        "../envs/sim.yaml"
+    params:
+        settings=study_settings,
+    script:
+        "../scripts/study_section.py"
+
+
 rule landing:
     input:
         unpack(landing_inputs),
-        template="report/landing.rst.jinja",
     output:
         rst=PATHS["landing"],
         csv=report(
@@ -37,9 +56,6 @@ rule landing:
     conda:
         "../envs/sim.yaml"
     params:
-        quick=QUICK,
-        studies=STUDIES,
-        model=config["model"],
         recording=landing_recording,
         statistics=bootstrap_settings,
         ensemble=DEFAULTS.get("ensemble", {}),
