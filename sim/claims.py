@@ -41,8 +41,7 @@ from sim.analysis.verdicts import (
     trend,
 )
 from sim.front_page import digits, interval, number
-from sim.results import scene_of
-from sim.scene import output_channel
+from sim.results import OUTPUT_VARIABLES, output_series
 from sim.studies.config import LANDING_INPUTS
 
 Inputs = Mapping[str, str]
@@ -76,11 +75,10 @@ def _open(path) -> xr.Dataset:
 def _deviation(run: xr.Dataset, ideal: xr.Dataset, variable: str) -> float:
     """Largest |run − ideal| over the ideal's range (after the first revolution); of the
     run's output channel (its scene's `output`) for a quantity of the bodies."""
-    data, ref = run[variable], ideal[variable]
-    if "body" in data.dims:
-        channel = output_channel(scene_of(run))
-        data = data.sel(body=channel.body, axis=channel.axis)
-        ref = ref.sel(body=channel.body, axis=channel.axis)
+    if variable in OUTPUT_VARIABLES:
+        data, ref = output_series(run, variable), output_series(ideal, variable)
+    else:
+        data, ref = run[variable], ideal[variable]
     start = float(run.attrs["crank_period"])
     data = data.sel(time=slice(start, None))
     ref = ref.interp(time=data.time)

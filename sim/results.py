@@ -29,7 +29,7 @@ from sim.quantities import (
     attributes,
     recorded,
 )
-from sim.scene import with_defaults
+from sim.scene import output_channel, with_defaults
 from sim.solve.record import column_layout, peak_layout
 
 NETCDF_LOCK = threading.Lock()
@@ -207,6 +207,22 @@ def scene_of(ds: xr.Dataset) -> dict:
     """The resolved scene a run was made from, defaults filled (a file written before a
     default was declared has them too)."""
     return with_defaults(json.loads(ds.attrs["scene"]))
+
+
+#: the output point's variable of each quantity of a body's reference point
+OUTPUT_VARIABLES = {
+    "position": "output_position",
+    "velocity": "output_velocity",
+    "acceleration": "output_acceleration",
+    "peak_acceleration": "peak_output_acceleration",
+    "revolution_peak_acceleration": "revolution_peak_output_acceleration",
+}
+
+
+def output_series(run: xr.Dataset, name: str) -> xr.DataArray:
+    """The run's output point (the scene's `output`) along the channel's axis, for `name`, a
+    key of OUTPUT_VARIABLES (m, m/s, m/s²)."""
+    return run[OUTPUT_VARIABLES[name]].sel(axis=output_channel(scene_of(run)).axis)
 
 
 def open_run(path: str | os.PathLike) -> xr.Dataset:

@@ -337,11 +337,18 @@ def _resolve(raw: dict, source: str, overrides: Sequence[str], problems: list[Pr
 
 
 class OutputChannel(NamedTuple):
-    """The channel the analyses read: a body, its point and a global axis (x or y)."""
+    """The channel the analyses read: a body, its point (a name, or [x, y] in the body's
+    frame, m) and a global axis (x or y)."""
 
     body: str
-    point: str
+    point: str | list[float]
     axis: str
+
+    @property
+    def label(self) -> str:
+        """The channel in words: "slider y", "rocker end y", "rocker [0.1, 0.02] y"."""
+        where = self.body if self.point == "centre" else f"{self.body} {self.point}"
+        return f"{where} {self.axis}"
 
 
 def output_channel(scene: dict) -> OutputChannel:

@@ -24,8 +24,7 @@ import numpy as np
 import pandas as pd
 import xarray as xr
 
-from sim.results import scene_of
-from sim.scene import output_channel
+from sim.results import output_series
 
 #: per-revolution quantities (columns of `revolution_table`) and their units
 SLIDER_ACCELERATION = "slider_acceleration"
@@ -44,12 +43,6 @@ def unit_of(quantity: str) -> str:
     return UNITS.get(quantity, "N")
 
 
-def _channel(run: xr.Dataset) -> dict:
-    """The selection of the run's output channel (`output` of its recorded scene)."""
-    channel = output_channel(scene_of(run))
-    return {"body": channel.body, "axis": channel.axis}
-
-
 def revolution_table(run: xr.Dataset, case: str, transient: int) -> pd.DataFrame:
     """One row per revolution after the first `transient` revolutions of a run: its case,
     ensemble member and seed, revolution, and peak |acceleration| of the scene's output
@@ -59,7 +52,7 @@ def revolution_table(run: xr.Dataset, case: str, transient: int) -> pd.DataFrame
     first = max(int(transient), 0) + 1  # revolution 0 is the initial state, not a revolution
     sel = {"revolution": slice(first, None)}
     columns = {
-        SLIDER_ACCELERATION: run.revolution_peak_acceleration.sel(_channel(run)),
+        SLIDER_ACCELERATION: output_series(run, "revolution_peak_acceleration"),
         DRIVE_TORQUE: run.revolution_peak_drive_torque,
         CONTACT_EVENTS: run.revolution_contact_events,
     }

@@ -6,7 +6,7 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import MaxNLocator
 
 from sim.plots import style
-from sim.results import scene_of
+from sim.results import output_series, scene_of
 from sim.scene import output_channel
 
 #: (variable, whether it is the output channel's, title of the panel)
@@ -18,11 +18,8 @@ PANELS = (
 )
 
 
-def _series(ds: xr.Dataset, variable: str, body, axis) -> xr.DataArray:
-    data = ds[variable]
-    if body is not None:
-        data = data.sel(body=body, axis=axis)
-    return data
+def _series(ds: xr.Dataset, variable: str, on_channel: bool) -> xr.DataArray:
+    return output_series(ds, variable) if on_channel else ds[variable]
 
 
 def _window(ds: xr.Dataset, revolutions: float) -> slice:
@@ -83,16 +80,15 @@ def plot_responses(run: xr.Dataset, ideal: xr.Dataset, *, revolutions: float = 2
         period = float(run.attrs["crank_period"])
         channel = output_channel(scene_of(run))
         for ax, (variable, on_channel, title) in zip(axes, PANELS, strict=True):
-            body, axis = (channel.body, channel.axis) if on_channel else (None, None)
-            sim = _series(sim_ds, variable, body, axis)
-            ref = _series(ref_ds, variable, body, axis).interp(time=sim.time)
+            sim = _series(sim_ds, variable, on_channel)
+            ref = _series(ref_ds, variable, on_channel).interp(time=sim.time)
             ax.plot(ref.time, ref, color=style.IDEAL, lw=style.LINE, label="ideal")
             ax.plot(sim.time, sim, color=style.CLEARANCE, lw=style.LINE, label="clearance")
-            prefix = f"{body} {axis}" if body else ""
-            ax.set_title(style.label(run[variable], prefix=prefix), loc="left")
-            ax.set_ylabel(f"{title}\n[{style.unit_text(run[variable].attrs['units'])}]")
+            prefix = channel.label if on_channel else ""
+            ax.set_title(style.label(sim, prefix=prefix), loc="left")
+            ax.set_ylabel(f"{title}\n[{style.unit_text(sim.attrs['units'])}]")
             if variable in ("acceleration", "drive_torque"):
-                how = _how_sampled(run[variable])
+                how = _how_sampled(sim)
                 _zoom(ax, sim.time.values, sim.values, ref.values, 0.04 * period, how)
         axes[0].legend(loc="upper left", ncols=2)
         axes[-1].set_xlabel(style.label(run.time))

@@ -9,8 +9,7 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import FuncFormatter, NullFormatter
 
 from sim.plots import style
-from sim.results import scene_of
-from sim.scene import output_channel
+from sim.results import output_series, scene_of
 from sim.studies import fidelity
 
 
@@ -24,10 +23,8 @@ def peaks_table(cases: list[str], runs: list[xr.Dataset], ideals: list[xr.Datase
     for case, run, ideal in zip(cases, runs, ideals, strict=True):
         scene = scene_of(run)
         revolutions = float(run.attrs["simulated_time_s"]) / float(run.attrs["crank_period"])
-        channel = output_channel(scene)
-        where = {"body": channel.body, "axis": channel.axis}
-        acc = float(run.peak_acceleration.sel(where))
-        acc_ideal = float(ideal.peak_acceleration.sel(where))
+        acc = float(output_series(run, "peak_acceleration"))
+        acc_ideal = float(output_series(ideal, "peak_acceleration"))
         torque = float(run.peak_drive_torque)
         torque_ideal = float(ideal.peak_drive_torque)
         row = {"case": case, "speed_rpm": scene["drive"]["speed_rpm"]}

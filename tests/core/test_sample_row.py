@@ -177,6 +177,7 @@ def test_a_run_file_holds_every_quantity_with_its_dims_and_attributes(
     fast = {q.name for q in recorded(SAMPLE) if q.sampling == INTERVAL_MEAN}
     assert fast == {
         "acceleration",
+        "output_acceleration",
         "angular_acceleration",
         "deflection",
         "drive_torque",
@@ -225,6 +226,15 @@ def test_kinematic_columns_of_the_ideal_rigid_slider_crank(ideal, ideal_points):
         ref["slider_acceleration"],
         rtol=0,
         atol=1e-6 * acc,
+    )
+    # the output point: the scene's default, the slider's centre, in its own columns
+    for what, scale in (("position", R), ("velocity", R * OMEGA)):
+        got = ideal[f"output_{what}"].values
+        np.testing.assert_allclose(got, ref[what]["slider"], rtol=0, atol=1e-7 * scale)
+    means = window_mean_of_rate(lambda s: closed_forms(s)["velocity"]["slider"], t)
+    np.testing.assert_allclose(ideal.output_acceleration, means, rtol=0, atol=1e-6 * acc)
+    np.testing.assert_allclose(
+        ideal_points.output_acceleration, ref["slider_acceleration"], rtol=0, atol=1e-6 * acc
     )
     assert np.all(ideal.deflection.values == 0.0)  # rigid links
     assert ideal.sizes["joint"] == 0  # ideal joints: no joint columns
