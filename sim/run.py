@@ -311,8 +311,9 @@ class EnergyWatch:
     largest kinetic energy, the potential energy's extremes, the largest drive work and the
     largest imbalance), so the audit over them equals the audit over every sample."""
 
-    def __init__(self, integ: Integration):
+    def __init__(self, integ: Integration, method: str):
         self.integ = integ
+        self.method = method  # solver.method, for the advice when the audit drifts
         self.done = 0
         self.kept = integ.buffers.out_rows[:0]
 
@@ -343,19 +344,26 @@ class EnergyWatch:
         integ = self.integ
         busiest = _busiest_joint(integ)
         where = f" (largest contact force at joint '{busiest}')" if busiest else ""
-        hint = (
-            "tighten solver.rtol"
-            if isinstance(integ.options.method, Dopri5)
-            else (
-                "the implicit method passed a stiff contact with a wrong velocity: tighten "
-                "solver.rtol or use solver.method=dopri5"
-            )
-        )
         return (
             f"by t = {integ.buffers.out_t[self.done - 1]:.6g} s the energy audit is off by "
             f"{audit:.3g} of the energy scale (bound {ENERGY_BOUND}){where}: a step created or "
-            f"lost energy; {hint}"
+            f"lost energy; {audit_advice(self.method, integ.system.beam_off.size > 0)}"
         )
+
+
+def audit_advice(method: str, beams: bool) -> str:
+    """What to change when a run's energy audit fails, for its integrator (`solver.method`)
+    and whether it has ANCF beams: its tolerance, or, under generalized-α without beams, the
+    integrator. Generalized-α's index-3 form loses or creates energy at the contact events of
+    a rattling clearance joint, which no tolerance or ρ∞ repairs (docs/fidelity.md, "Modal
+    links"); DOPRI5 closes the same runs' audits near 1e-5, for rigid and modal links at
+    1.6–3.7 × the CPU time, but with beams its steps are bound by their axial modes."""
+    if method == "dopri5" or beams:
+        return "tighten solver.rtol"
+    return (
+        "use solver.method=dopri5: generalized-alpha loses or creates energy at the contact "
+        "events of a rattling clearance joint, which no tolerance or rho_inf repairs"
+    )
 
 
 def diagnose(integ: Integration, status: int) -> str:
@@ -522,7 +530,7 @@ class Run:
         self.wall = 0.0  # s spent integrating this run alone
         self.cpu = 0.0  # s of this process's CPU time spent integrating it
         self.bar = Progress(self.t_end, progress)
-        self.watch = EnergyWatch(self.integ)
+        self.watch = EnergyWatch(self.integ, self.scene["solver"]["method"])
         self.next_audit = self.period / 4.0  # s: when the energy watch next audits
         # the integrator's first call records the samples at t = 0 (and takes no step)
         self._check(self.integ.advance(0.0))

@@ -16,7 +16,7 @@ def _cmd_scene(args: argparse.Namespace) -> int:
 
 def _cmd_run(args: argparse.Namespace) -> int:
     from sim.results import write_netcdf
-    from sim.run import simulate
+    from sim.run import audit_advice, simulate
     from sim.scene import load_scene
 
     check_output("--output", args.output)
@@ -35,11 +35,11 @@ def _cmd_run(args: argparse.Namespace) -> int:
         f"energy error {a['energy_error_relative']:.2e} of the energy scale"
     )
     if a["energy_audit_exceeded"]:
+        beams = not args.rigid and any(b["kind"] == "beam" for b in scene["bodies"].values())
         print(
             f"{args.output}: the energy audit {a['energy_error_relative']:.2e} exceeds the bound "
             f"of a sound run, {a['energy_audit_bound']:g} of the energy scale "
-            "(docs/fidelity.md): tighten solver.rtol or, under generalized_alpha, raise "
-            "solver.rho_inf"
+            f"(docs/fidelity.md): {audit_advice(scene['solver']['method'], beams)}"
         )
     return 0
 
