@@ -88,9 +88,15 @@ def plot_command(args: argparse.Namespace) -> int:
     return 0
 
 
+def _article(noun: str) -> str:
+    return "an" if noun[0] in "aeiou" else "a"
+
+
 def register(subparsers: argparse._SubParsersAction) -> argparse.ArgumentParser:
     """Add the ``plot`` subcommand to the ``sim`` command's subparsers."""
-    kinds = "; ".join(f"a {what}: {', '.join(names)}" for what, names in KINDS.items())
+    kinds = "; ".join(
+        f"{_article(what)} {what}: {', '.join(names)}" for what, names in KINDS.items()
+    )
     parser = subparsers.add_parser(
         "plot",
         help="draw a run, an analysis or a sweep to PNG or SVG",
