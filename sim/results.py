@@ -225,19 +225,21 @@ def output_series(run: xr.Dataset, name: str) -> xr.DataArray:
     return run[OUTPUT_VARIABLES[name]].sel(axis=output_channel(scene_of(run)).axis)
 
 
-def open_run(path: str | os.PathLike) -> xr.Dataset:
-    """The run file at `path` (netCDF written by `sim run`), read into memory; ValueError
-    naming the file when it is missing, a directory or not netCDF (`sim` reports it with
-    exit code 2)."""
+def open_run(
+    path: str | os.PathLike, what: str = "run file", writer: str = "`sim run`"
+) -> xr.Dataset:
+    """The file at `path` (netCDF written by `writer`; `what` names it in messages), read into
+    memory; ValueError naming the file when it is missing, a directory or not netCDF (`sim`
+    reports it with exit code 2)."""
     path = Path(path)
     if not path.is_file():
-        what = "is a directory, not a netCDF file" if path.is_dir() else "does not exist"
-        raise ValueError(f"run file '{path}' {what}")
+        problem = "is a directory, not a netCDF file" if path.is_dir() else "does not exist"
+        raise ValueError(f"{what} '{path}' {problem}")
     try:
         return xr.load_dataset(path)
     except (OSError, ValueError) as exc:
         # xarray's ValueError lists its IO backends; only a netCDF library's reason helps.
         reason = f" ({exc})" if isinstance(exc, OSError) else ""
         raise ValueError(
-            f"run file '{path}' is not a netCDF file{reason}: give a file written by `sim run`"
+            f"{what} '{path}' is not a netCDF file{reason}: give a file written by {writer}"
         ) from None

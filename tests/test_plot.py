@@ -74,7 +74,8 @@ def test_the_ideal_reference_is_simulated_as_the_workflow_runs_it(files):
         (["analysis.nc", "--kind", "responses"], "is drawn as phase or poincare"),
         (["sweep.nc", "--kind", "phase"], "is drawn as bifurcation"),
         (["analysis.nc", "--ideal", "ideal.nc"], "only the responses take an ideal reference"),
-        (["runs", "-o", "x.png"], "runs"),
+        (["runs", "-o", "x.png"], "file 'runs' is a directory"),
+        (["missing.nc"], "file 'missing.nc' does not exist"),
     ],
 )
 def test_what_cannot_be_drawn_is_refused_before_drawing(

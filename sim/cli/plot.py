@@ -74,7 +74,7 @@ def plot_command(args: argparse.Namespace) -> int:
         endings = " or ".join(f".{name}" for name in FORMATS)
         raise ValueError(f"--output '{args.output}': give a file ending in {endings}")
     check_output("--output", args.output)
-    ds = open_run(args.file)
+    ds = open_run(args.file, "file", "`sim run`, `sim analyze` or `sim sweep`")
     what = file_kind(ds, args.file)
     kind = args.kind or KINDS[what][0]
     if kind not in KINDS[what]:
