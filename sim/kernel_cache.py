@@ -3,7 +3,7 @@ starts.
 
 numba compiles a kernel on its first call and keeps it in the on-disk cache (sim.jit): in a
 fresh environment, or after an edit of any kernel, the first run of each method compiles for
-minutes and prints nothing. `compile_integrator` compiles (or loads) the loop for a run's
+up to a minute and prints nothing. `compile_integrator` compiles (or loads) the loop for a run's
 argument types before it is timed, so the recorded wall time and real-time factor are those
 of the integration alone, and says once, with an estimate, when the cache does not hold it.
 Asking the cache is cheap: numba's own index of the cached signatures is read, nothing is
@@ -17,10 +17,10 @@ import numba
 
 from sim.solve import stepping
 
-#: Compile time (s) of each method's integration loop, after the right-hand side and the
-#: sample row, from an empty cache on this project's 2-core reference machine
-#: (docs/performance.md, "Start-up"); longer when other work shares the core.
-COMPILE_SECONDS = {"dopri5": 160.0, "generalized_alpha": 400.0}
+#: Compile time (s) of each method's integration loop with everything it calls, from an empty
+#: cache on this project's 2-core reference machine, generalized-α's after DOPRI5's
+#: (docs/performance.md, "Start-up"), rounded up; longer when other work shares the core.
+COMPILE_SECONDS = {"dopri5": 50.0, "generalized_alpha": 40.0}
 
 
 def _signature(args: tuple) -> tuple:
@@ -53,10 +53,10 @@ def compile_integrator(args: tuple, method: str) -> float:
     if signature in stepping.integrate.overloads:
         return 0.0
     if not is_cached(stepping.integrate, args):
-        minutes = COMPILE_SECONDS[method] / 60.0
         print(
             f"compiling the integrator's kernels for {method} (numba; once per install or "
-            f"change of the kernels, then cached): about {minutes:.0f} min on an idle core",
+            f"change of the kernels, then cached): about {COMPILE_SECONDS[method]:.0f} s on an "
+            "idle core",
             file=sys.stderr,
             flush=True,
         )

@@ -1,7 +1,7 @@
 """The suite's set-up: both integrators' kernels compiled side by side before the first test.
 
 From an empty numba cache (a fresh clone, CI, an edit of any kernel) the first run of each
-integrator compiles its loop and its lockstep follower for minutes
+integrator compiles its loop and its lockstep follower for up to a minute
 (`sim.kernel_cache.COMPILE_SECONDS`); in one pytest process the two integrators' compiles come
 one after the other on one core. `pytest_sessionstart` runs them at once in two processes, as the
 workflow's `compile_kernels` rule does (`sim.studies.kernels`, whose order lets the two share

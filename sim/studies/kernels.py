@@ -1,7 +1,7 @@
 """Compile the integrator's kernels for one method before the runs that need them.
 
 numba compiles a kernel on its first call and keeps it in the on-disk cache (:mod:`sim.jit`),
-so in a fresh environment the first runs pay the compile: minutes for each method's
+so in a fresh environment the first runs pay the compile: up to a minute for each method's
 integration loop (`sim.kernel_cache.COMPILE_SECONDS`). Two processes that start at once both
 compile what they share. The workflow's rule ``compile_kernels`` (and the test suite's set-up,
 ``tests/conftest.py``) runs :func:`compile_kernels` once per method, the two methods side by
