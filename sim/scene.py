@@ -22,6 +22,7 @@ from typing import Any, NamedTuple
 
 import yaml
 
+from sim.model.lubrication import LONG_MIN, SHORT_MAX, bearing_model
 from sim.scene_keys import (
     BAR,
     BLOCK,
@@ -30,6 +31,7 @@ from sim.scene_keys import (
     DAMPING,
     DRIVE,
     HINT,
+    LUBRICANT,
     MATERIAL,
     NO_DEFAULT,
     OUTPUT,
@@ -277,6 +279,7 @@ def with_defaults(scene: dict) -> dict:
         for entry in entries.values() if isinstance(entries, dict) else ():
             if isinstance(entry, dict):
                 _fill(entry, spec(entry) or {})
+                _fill(entry.get("lubricant"), LUBRICANT)
     for key, spec in (
         ("output", OUTPUT),
         ("drive", DRIVE),
@@ -444,6 +447,8 @@ def key_field(scene: dict, key: str) -> Field | None:
         return (BLOCK if body.get("shape") == "block" else BAR).get(parts[2])
     if len(parts) == 3 and parts[0] == "joints" and parts[1] in scene["joints"]:
         return (_joint_table(scene["joints"][parts[1]]) or {}).get(parts[2])
+    if parts[:1] == ["joints"] and parts[2:3] == ["lubricant"] and len(parts) == 4:
+        return LUBRICANT.get(parts[3])
     if len(parts) == 3 and parts[0] == "materials":
         return MATERIAL.get(parts[2])
     return TOP.get(key)
@@ -623,5 +628,35 @@ def _check_joint(
                 f"{where}.clearance",
                 f"'{where}.clearance' = {joint['clearance']!r} must be smaller than "
                 f"'{where}.bearing_radius' = {joint['bearing_radius']!r}",
+            )
+        )
+    elif joint["lubricant"] is not None:
+        _check_lubricant(joint, f"{where}.lubricant", problems)
+
+
+def _check_lubricant(joint: dict, where: str, problems: list[Problem]) -> None:
+    """Problems of a revolute joint's `lubricant` block: its keys, a threshold below the
+    clearance, and an L/D that one of the bearing models covers (sim.model.lubrication)."""
+    lubricant = joint["lubricant"]
+    if not _check_section(lubricant, LUBRICANT, where, problems):
+        return
+    if joint["clearance"] > 0.0 and lubricant["threshold"] >= joint["clearance"]:
+        problems.append(
+            Problem(
+                f"{where}.threshold",
+                f"'{where}.threshold' = {lubricant['threshold']!r} must be smaller than the "
+                f"joint's clearance {joint['clearance']!r} m",
+            )
+        )
+    diameter = 2.0 * (joint["bearing_radius"] - joint["clearance"])
+    try:
+        bearing_model(lubricant["length"], 0.5 * diameter)
+    except ValueError as error:
+        problems.append(
+            Problem(
+                f"{where}.length",
+                f"'{where}.length' = {lubricant['length']!r} is not accepted: {error}; "
+                f"expected L ≤ {SHORT_MAX * diameter:.4g} m or L ≥ {LONG_MIN * diameter:.4g} m "
+                f"for the journal's diameter D = {diameter:.4g} m",
             )
         )

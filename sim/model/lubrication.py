@@ -1,0 +1,253 @@
+"""The oil film of a lubricated revolute clearance joint: the hydrodynamic force of a
+dynamically loaded journal bearing and its hand-over to the joint's dry contact law.
+
+Symbols: R the journal radius, L the bearing length, D = 2R, c the radial clearance (m);
+μ the oil's dynamic viscosity (Pa·s); e = r_J − r_B the eccentricity, ε = |e|/c, n = e/|e|,
+t = k × n; ψ the angle around the bearing from n towards t, the film thickness
+h = c H, H = 1 − ε cos ψ (thinnest at ψ = 0); ω_J, ω_B the journal's and the bearing's angular
+velocities, ω̄ = (ω_J + ω_B)/2.
+
+Squeeze and wedge in one: in the frame turning at ω̄ both surfaces slide at equal and
+opposite speeds, so the wedge term of Reynolds' equation vanishes and the film sees a
+pure squeeze at the relative velocity V = ė − ω̄ k × e; its radial part V_r = c ε̇ is the
+squeeze term, its tangential part V_t = c ε (φ̇ − ω̄) carries the wedge term
+(Frêne et al., Hydrodynamic Lubrication, Elsevier 1997, ch. 8; Flores, Ambrósio, Claro &
+Lankarani, Mech. Mach. Theory 41, 2006, and Kinematics and Dynamics of Multibody Systems
+with Imperfect Joints, Springer 2008, ch. 6). V is the difference of the velocities of the
+journal's and the bearing's material points at the midpoint M of their centres, and the
+film force F (on the journal, −F on the bearing) is applied there: M's offsets ∓e/2 put the
+torque −(e × F)/2 on each body, the moment of the pressure's Poiseuille shear on each
+surface, and the film's power into the bodies is exactly F·V.
+
+Cavitation: half-Sommerfeld (Gümbel), the film carries no negative pressure,
+p = max(p_full, 0). With it F·V ≤ 0 in both models below: the film only dissipates; the
+energy audit books −F·V as dissipated power. The viscous (Couette) shear torque of the
+film, which is dissipative too, is neglected, as by Flores et al.
+
+Models by L/D (`bearing_model`):
+- short bearing (Ocvirk; Frêne et al. §8.3), L/D ≤ SHORT_MAX: p = 6μ (L²/4 − z²) (V·n_ψ)/h³;
+  p > 0 on exactly the half circle facing V, so the Gümbel film is the π-film
+  |ψ − α| < π/2, α the angle of V from n, integrated in closed form;
+- long bearing (Sommerfeld; Pinkus & Sternlicht, Theory of Hydrodynamic Lubrication,
+  McGraw-Hill 1961, ch. 4), L/D ≥ LONG_MIN: the full-film pressure of
+  d/dψ (H³ dp/dψ) = −(12 μ R²/c³) (V_r cos ψ + V_t sin ψ), periodic, zero at the thickest
+  film ψ = π (the oil supply), in closed form; its positive part integrated by the
+  trapezoid rule on LONG_NODES points of the Sommerfeld angle γ, which gathers them where
+  the film is thin.
+Between them no model is implemented: the scene refuses such a joint (sim.scene).
+
+Integrals with the Sommerfeld substitution cos γ = (cos ψ − ε)/(1 − ε cos ψ), which turns
+dψ/H³ into (1 + ε cos γ)² dγ/(1 − ε²)^(5/2) and every integrand below into a trigonometric
+polynomial of γ.
+
+Transition to contact (docs/model.md, "Lubricated revolute joints"): below the threshold
+film thickness h_t the asperities carry a growing share of the load. The film force is
+evaluated at ε_f = min(ε, ε_t), ε_t = 1 − h_t/c, and weighted by
+w = s²(3 − 2s), s = clip(h/h_t, 0, 1), h = c(1 − ε): w = 1 above h_t, w = 0 at h = 0, where
+the dry law, zero at zero penetration, acts alone. The force is continuous everywhere, and
+w ≥ 0 times a dissipative force dissipates: no energy is created at the hand-over.
+"""
+
+import math
+
+import numpy as np
+
+from sim.jit import kernel, kernel_inline
+from sim.model.kinematics import apply_point_force_rotated, point_velocity_rotated
+
+BEARING_DRY, BEARING_SHORT, BEARING_LONG = 0, 1, 2
+SHORT_MAX = 0.5
+"""Largest L/D of the short-bearing model: its force is within about 10 % of the finite
+bearing's up to L/D = 0.5 at moderate ε, better below 0.25 (Frêne et al. §8.3)."""
+LONG_MIN = 2.0
+"""Smallest L/D of the long-bearing model (Pinkus & Sternlicht ch. 4: side leakage
+negligible from about L/D = 2)."""
+LONG_NODES = 128
+"""Trapezoid points of the long bearing's force integral over the Sommerfeld angle: the
+steady forces within 1e-4 of the closed form of Pinkus & Sternlicht (tests/model/
+test_lubrication.py)."""
+
+FILM = np.dtype(
+    [
+        ("bearing", np.int64),  # BEARING_DRY, BEARING_SHORT or BEARING_LONG
+        ("viscosity", np.float64),  # μ, Pa·s
+        ("length", np.float64),  # L, m
+        ("threshold", np.float64),  # h_t, m
+    ],
+    align=True,
+)
+
+
+def bearing_model(length: float, journal_radius: float) -> int:
+    """BEARING_SHORT or BEARING_LONG for a bearing of length L (m) on a journal of radius
+    R (m); ValueError for L/D between SHORT_MAX and LONG_MIN, where neither holds."""
+    ratio = length / (2.0 * journal_radius)
+    if ratio <= SHORT_MAX:
+        return BEARING_SHORT
+    if ratio >= LONG_MIN:
+        return BEARING_LONG
+    raise ValueError(
+        f"L/D = {ratio:.3g} is neither a short bearing (L/D ≤ {SHORT_MAX:g}) nor a long one "
+        f"(L/D ≥ {LONG_MIN:g}); no finite-bearing model is implemented"
+    )
+
+
+def film_parameters(lubricant: dict | None, journal_radius: float) -> tuple:
+    """The FILM row of a joint's `lubricant` block (sim.scene_keys.LUBRICANT); a dry row for
+    None."""
+    if lubricant is None:
+        return (BEARING_DRY, 0.0, 0.0, 0.0)
+    return (
+        bearing_model(lubricant["length"], journal_radius),
+        lubricant["viscosity"],
+        lubricant["length"],
+        lubricant["threshold"],
+    )
+
+
+@kernel_inline
+def sommerfeld_angle(psi: float, eps: float) -> float:
+    """γ(ψ) with tan(γ/2) = k tan(ψ/2), k = √((1 + ε)/(1 − ε)), continuous in ψ:
+    γ = ψ + 2 atan((k − 1) sin ψ / ((k + 1) − (k − 1) cos ψ))."""
+    k = math.sqrt((1.0 + eps) / (1.0 - eps))
+    return psi + 2.0 * math.atan(
+        (k - 1.0) * math.sin(psi) / ((k + 1.0) - (k - 1.0) * math.cos(psi))
+    )
+
+
+@kernel_inline
+def short_bearing_force(
+    eps: float, vr: float, vt: float, mu: float, radius: float, length: float, c: float
+) -> tuple[float, float]:
+    """Film force (F_n, F_t) (N) on the journal of a short bearing, π-film facing V:
+    F = −(μ R L³/c³) ∫ n_ψ n_ψᵀ V dψ / H³ over |ψ − α| < π/2."""
+    speed = math.hypot(vr, vt)
+    if speed == 0.0:
+        return 0.0, 0.0
+    alpha = math.atan2(vt, vr)
+    g1 = sommerfeld_angle(alpha - 0.5 * math.pi, eps)
+    g2 = sommerfeld_angle(alpha + 0.5 * math.pi, eps)
+    s = 1.0 - eps * eps
+    # ∫ cos²ψ/H³, ∫ sin ψ cos ψ/H³, ∫ sin²ψ/H³ over the film, by their antiderivatives in γ
+    cc = _cos2(g2, eps) - _cos2(g1, eps)
+    sc = (0.5 * math.sin(g2) ** 2 - eps * math.cos(g2)) - (
+        0.5 * math.sin(g1) ** 2 - eps * math.cos(g1)
+    )
+    ss = (0.5 * (g2 - g1) - 0.25 * (math.sin(2.0 * g2) - math.sin(2.0 * g1))) / s**1.5
+    cc /= s**2.5
+    sc /= s * s
+    scale = mu * radius * length**3 / c**3
+    return -scale * (cc * vr + sc * vt), -scale * (sc * vr + ss * vt)
+
+
+@kernel_inline
+def _cos2(g: float, eps: float) -> float:
+    """∫ (cos γ + ε)² dγ."""
+    return 0.5 * g + 0.25 * math.sin(2.0 * g) + 2.0 * eps * math.sin(g) + eps * eps * g
+
+
+@kernel_inline
+def long_bearing_pressure(gamma: float, eps: float, vr: float, vt: float) -> float:
+    """Full-film pressure of the long bearing at Sommerfeld angle γ ∈ [−π, π], in units of
+    12 μ R²/c³ (m/s): p(ψ) = ∫_π^ψ (−V_r sin ψ + V_t cos ψ + C) dψ/H³,
+    C = −3 ε V_t/(2 + ε²) for periodicity."""
+    s = 1.0 - eps * eps
+    s25 = s**2.5
+    cg = math.cos(gamma)
+    sg = math.sin(gamma)
+    h = s / (1.0 + eps * cg)  # H at this γ
+    cos_psi = (cg + eps) / (1.0 + eps * cg)
+    # −V_r ∫ sin ψ/H³ = V_r [1/(2εH²)]_π^ψ, written without the division by ε
+    squeeze = vr * (1.0 + cos_psi) * (1.0 + eps + h) / (2.0 * h * h * (1.0 + eps) ** 2)
+    a = (1.0 + eps * eps) * sg + 1.5 * eps * (gamma - math.pi) + 0.25 * eps * math.sin(2.0 * gamma)
+    b = (1.0 + 0.5 * eps * eps) * (gamma - math.pi) + 2.0 * eps * sg
+    b += 0.25 * eps * eps * math.sin(2.0 * gamma)
+    return squeeze + vt * (a - 3.0 * eps / (2.0 + eps * eps) * b) / s25
+
+
+@kernel_inline
+def long_bearing_force(
+    eps: float, vr: float, vt: float, mu: float, radius: float, length: float, c: float
+) -> tuple[float, float]:
+    """Film force (F_n, F_t) (N) on the journal of a long bearing, half-Sommerfeld:
+    F = −R L ∫ max(p, 0) n_ψ dψ, dψ = H dγ/√(1 − ε²)."""
+    s = 1.0 - eps * eps
+    fn = 0.0
+    ft = 0.0
+    step = 2.0 * math.pi / LONG_NODES
+    for i in range(LONG_NODES):
+        gamma = -math.pi + (i + 0.5) * step
+        p = long_bearing_pressure(gamma, eps, vr, vt)
+        if p <= 0.0:
+            continue
+        cg = math.cos(gamma)
+        weight = p * s / (1.0 + eps * cg)  # p H; the 1/√(1 − ε²) below
+        fn += weight * (cg + eps) / (1.0 + eps * cg)
+        ft += weight * math.sqrt(s) * math.sin(gamma) / (1.0 + eps * cg)
+    scale = -12.0 * mu * radius**3 * length / c**3 * step / math.sqrt(s)
+    return scale * fn, scale * ft
+
+
+@kernel_inline
+def film_weight(h: float, threshold: float) -> float:
+    """Share w of the film in the load at minimum film thickness h (m): 1 above the threshold
+    h_t, smoothstep s²(3 − 2s), s = h/h_t, below it, 0 at contact."""
+    s = min(max(h / threshold, 0.0), 1.0)
+    return s * s * (3.0 - 2.0 * s)
+
+
+@kernel_inline
+def film_force(sys, j: int, eps: float, vr: float, vt: float) -> tuple[float, float]:
+    """The film force (F_n, F_t) (N) on the journal of lubricated revolute clearance j at
+    eccentricity ratio ε and relative velocity (V_r, V_t) (m/s), with the hand-over to the
+    dry law below the threshold (module docstring)."""
+    film = sys.rj_film[j]
+    c = sys.rj[j].clearance
+    eps_f = min(eps, 1.0 - film.threshold / c)
+    w = film_weight(c * (1.0 - eps), film.threshold)
+    if w == 0.0:
+        return 0.0, 0.0
+    r = sys.rj[j].journal_radius
+    if film.bearing == BEARING_SHORT:
+        fn, ft = short_bearing_force(eps_f, vr, vt, film.viscosity, r, film.length, c)
+    else:
+        fn, ft = long_bearing_force(eps_f, vr, vt, film.viscosity, r, film.length, c)
+    return w * fn, w * ft
+
+
+@kernel
+def lubricated_joint(
+    sys,
+    j: int,
+    q: np.ndarray,
+    qd: np.ndarray,
+    gen: np.ndarray,
+    ex: float,
+    ey: float,
+    cb: float,
+    sb: float,
+    cj: float,
+    sj: float,
+) -> tuple[float, float, float]:
+    """Apply the film force of revolute clearance j at the midpoint of the centres (on the
+    journal, its opposite on the bearing); return its radial force on the journal towards
+    the centre and its tangential force (N), and the power the film dissipates, −F·V (W).
+    (ex, ey): the eccentricity (m); (c, s): the bearing's and the journal's cos θ, sin θ."""
+    pb = sys.rj_pts[j, 0]
+    pj = sys.rj_pts[j, 1]
+    e = math.hypot(ex, ey)
+    nx, ny = (ex / e, ey / e) if e > 0.0 else (1.0, 0.0)
+    hx = 0.5 * ex
+    hy = 0.5 * ey
+    vjx, vjy = point_velocity_rotated(sys, pj, q, qd, -hx, -hy, cj, sj)
+    vbx, vby = point_velocity_rotated(sys, pb, q, qd, hx, hy, cb, sb)
+    vx = vjx - vbx
+    vy = vjy - vby
+    vr = vx * nx + vy * ny
+    vt = -vx * ny + vy * nx
+    fn, ft = film_force(sys, j, e / sys.rj[j].clearance, vr, vt)
+    fx = fn * nx - ft * ny
+    fy = fn * ny + ft * nx
+    apply_point_force_rotated(sys, pj, q, fx, fy, -hx, -hy, gen, cj, sj)
+    apply_point_force_rotated(sys, pb, q, -fx, -fy, hx, hy, gen, cb, sb)
+    return -fn, ft, -(fx * vx + fy * vy)
