@@ -146,23 +146,29 @@ def _cos2(g: float, eps: float) -> float:
     return 0.5 * g + 0.25 * math.sin(2.0 * g) + 2.0 * eps * math.sin(g) + eps * eps * g
 
 
+_GAMMA = -math.pi + (np.arange(LONG_NODES) + 0.5) * (2.0 * math.pi / LONG_NODES)
+"""The long bearing's trapezoid points of the Sommerfeld angle γ, with their cos γ, sin γ and
+sin 2γ, once: the kernel's integral then computes no trigonometric function."""
+_COS_GAMMA = np.cos(_GAMMA)
+_SIN_GAMMA = np.sin(_GAMMA)
+_SIN_2GAMMA = np.sin(2.0 * _GAMMA)
+
+
 @kernel_inline
-def long_bearing_pressure(gamma: float, eps: float, vr: float, vt: float) -> float:
-    """Full-film pressure of the long bearing at Sommerfeld angle γ ∈ [−π, π], in units of
-    12 μ R²/c³ (m/s): p(ψ) = ∫_π^ψ (−V_r sin ψ + V_t cos ψ + C) dψ/H³,
-    C = −3 ε V_t/(2 + ε²) for periodicity."""
+def long_bearing_pressure(
+    gamma: float, cg: float, sg: float, s2g: float, eps: float, vr: float, vt: float
+) -> float:
+    """Full-film pressure of the long bearing at Sommerfeld angle γ ∈ [−π, π] (cos γ, sin γ,
+    sin 2γ given), in units of 12 μ R²/c³ (m/s): p(ψ) = ∫_π^ψ (−V_r sin ψ + V_t cos ψ + C)
+    dψ/H³, C = −3 ε V_t/(2 + ε²) for periodicity."""
     s = 1.0 - eps * eps
-    s25 = s**2.5
-    cg = math.cos(gamma)
-    sg = math.sin(gamma)
     h = s / (1.0 + eps * cg)  # H at this γ
     cos_psi = (cg + eps) / (1.0 + eps * cg)
     # −V_r ∫ sin ψ/H³ = V_r [1/(2εH²)]_π^ψ, written without the division by ε
     squeeze = vr * (1.0 + cos_psi) * (1.0 + eps + h) / (2.0 * h * h * (1.0 + eps) ** 2)
-    a = (1.0 + eps * eps) * sg + 1.5 * eps * (gamma - math.pi) + 0.25 * eps * math.sin(2.0 * gamma)
-    b = (1.0 + 0.5 * eps * eps) * (gamma - math.pi) + 2.0 * eps * sg
-    b += 0.25 * eps * eps * math.sin(2.0 * gamma)
-    return squeeze + vt * (a - 3.0 * eps / (2.0 + eps * eps) * b) / s25
+    a = (1.0 + eps * eps) * sg + 1.5 * eps * (gamma - math.pi) + 0.25 * eps * s2g
+    b = (1.0 + 0.5 * eps * eps) * (gamma - math.pi) + 2.0 * eps * sg + 0.25 * eps * eps * s2g
+    return squeeze + vt * (a - 3.0 * eps / (2.0 + eps * eps) * b) / s**2.5
 
 
 @kernel_inline
@@ -170,21 +176,23 @@ def long_bearing_force(
     eps: float, vr: float, vt: float, mu: float, radius: float, length: float, c: float
 ) -> tuple[float, float]:
     """Film force (F_n, F_t) (N) on the journal of a long bearing, half-Sommerfeld:
-    F = −R L ∫ max(p, 0) n_ψ dψ, dψ = H dγ/√(1 − ε²)."""
+    F = −R L ∫ max(p, 0) n_ψ dψ, dψ = H dγ/√(1 − ε²), n_ψ = (cos ψ, sin ψ) =
+    (cos γ + ε, √(1 − ε²) sin γ)/(1 + ε cos γ)."""
     s = 1.0 - eps * eps
+    root = math.sqrt(s)
     fn = 0.0
     ft = 0.0
-    step = 2.0 * math.pi / LONG_NODES
     for i in range(LONG_NODES):
-        gamma = -math.pi + (i + 0.5) * step
-        p = long_bearing_pressure(gamma, eps, vr, vt)
+        cg = _COS_GAMMA[i]
+        sg = _SIN_GAMMA[i]
+        p = long_bearing_pressure(_GAMMA[i], cg, sg, _SIN_2GAMMA[i], eps, vr, vt)
         if p <= 0.0:
             continue
-        cg = math.cos(gamma)
-        weight = p * s / (1.0 + eps * cg)  # p H; the 1/√(1 − ε²) below
-        fn += weight * (cg + eps) / (1.0 + eps * cg)
-        ft += weight * math.sqrt(s) * math.sin(gamma) / (1.0 + eps * cg)
-    scale = -12.0 * mu * radius**3 * length / c**3 * step / math.sqrt(s)
+        k = 1.0 + eps * cg
+        weight = p * s / (k * k)  # p H/(1 + ε cos γ)
+        fn += weight * (cg + eps)
+        ft += weight * root * sg
+    scale = -12.0 * mu * radius**3 * length / c**3 * (2.0 * math.pi / LONG_NODES) / root
     return scale * fn, scale * ft
 
 
