@@ -22,7 +22,7 @@ from typing import Any, NamedTuple
 
 import yaml
 
-from sim.model.lubrication import LONG_MIN, SHORT_MAX, bearing_model
+from sim.model.lubrication import BEARING_FINITE, FINITE_ECCENTRICITY_MAX, bearing_model
 from sim.scene_keys import (
     BAR,
     BLOCK,
@@ -635,28 +635,21 @@ def _check_joint(
 
 
 def _check_lubricant(joint: dict, where: str, problems: list[Problem]) -> None:
-    """Problems of a revolute joint's `lubricant` block: its keys, a threshold below the
-    clearance, and an L/D that one of the bearing models covers (sim.model.lubrication)."""
+    """Problems of a revolute joint's `lubricant` block: its keys and a threshold below the
+    clearance, within the finite bearing's table for such a bearing (sim.model.lubrication)."""
     lubricant = joint["lubricant"]
-    if not _check_section(lubricant, LUBRICANT, where, problems):
+    if not _check_section(lubricant, LUBRICANT, where, problems) or joint["clearance"] == 0.0:
         return
-    if joint["clearance"] > 0.0 and lubricant["threshold"] >= joint["clearance"]:
+    clearance = joint["clearance"]
+    lowest = 0.0
+    if bearing_model(lubricant["length"], joint["bearing_radius"] - clearance) == BEARING_FINITE:
+        lowest = clearance * (1.0 - FINITE_ECCENTRICITY_MAX)
+    if not lowest <= lubricant["threshold"] < clearance:
         problems.append(
             Problem(
                 f"{where}.threshold",
-                f"'{where}.threshold' = {lubricant['threshold']!r} must be smaller than the "
-                f"joint's clearance {joint['clearance']!r} m",
-            )
-        )
-    diameter = 2.0 * (joint["bearing_radius"] - joint["clearance"])
-    try:
-        bearing_model(lubricant["length"], 0.5 * diameter)
-    except ValueError as error:
-        problems.append(
-            Problem(
-                f"{where}.length",
-                f"'{where}.length' = {lubricant['length']!r} is not accepted: {error}; "
-                f"expected L ≤ {SHORT_MAX * diameter:.4g} m or L ≥ {LONG_MIN * diameter:.4g} m "
-                f"for the journal's diameter D = {diameter:.4g} m",
+                f"'{where}.threshold' = {lubricant['threshold']!r} is not accepted; expected "
+                f"{lowest:.4g} ≤ x < {clearance!r} m: below the joint's clearance"
+                + (", and a film no thinner than the finite bearing's table" if lowest else ""),
             )
         )

@@ -274,8 +274,8 @@ LUBRICANT = {
         "m",
         open_min=True,
         doc="bearing length L along the pin; L/D (D the journal's diameter) chooses the "
-        "model: short bearing (Ocvirk) for L/D ≤ 0.5, long bearing (Sommerfeld) for L/D ≥ 2; "
-        "between them no model is implemented and the scene is refused",
+        "model: short bearing (Ocvirk) for L/D ≤ 0.5, long bearing (Sommerfeld) for L/D ≥ 2, "
+        "a Reynolds solution tabulated for L/D between",
     ),
     "threshold": _num(
         0.0,
@@ -284,7 +284,8 @@ LUBRICANT = {
         open_min=True,
         default=1.5e-6,
         doc="minimum film thickness h_t below which the dry contact law takes over "
-        "(smoothly, reaching it alone at zero film); below the joint's `clearance`. Default "
+        "(smoothly, reaching it alone at zero film); below the joint's `clearance`, and for "
+        "a finite bearing at least 5e-4 of it (its table's end). Default "
         "(ASSUMED): 3 σ, the film parameter Λ = h/σ = 3 where full-film lubrication ends "
         "(Hamrock, Fundamentals of Fluid Film Lubrication), σ = 0.5 µm the composite RMS "
         "roughness of a ground pin (0.35 µm) in a honed bore (0.35 µm)",

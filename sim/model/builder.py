@@ -13,7 +13,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from sim.model import ancf, beams, modal
-from sim.model.lubrication import FILM, film_parameters
+from sim.model.lubrication import FILM, film_parameters, film_tables
 from sim.model.system import (
     BEAM,
     CON_CLAMP,
@@ -335,6 +335,7 @@ class SystemBuilder:
         beam_f = [f for _, _, f in self._beams]
         md = list(zip(*self._modal, strict=True)) or [()] * 6
         drive_row, drive_coord = self._drive
+        films = np.array(self._rj_film, dtype=FILM)
         system = System(
             n=n,
             m=self._m,
@@ -357,7 +358,8 @@ class SystemBuilder:
             drive_coord=drive_coord,
             rj_pts=np.array([p for _, p, _ in self._rj], dtype=np.int64).reshape(-1, 2),
             rj=np.array([f for _, _, f in self._rj], dtype=REVOLUTE_CLEARANCE),
-            rj_film=np.array(self._rj_film, dtype=FILM),
+            rj_film=films,
+            rj_film_table=film_tables(films, np.array([f[1] for _, _, f in self._rj])),
             tj_off=np.array([o for _, o, _ in self._tj], dtype=np.int64),
             tj=np.array([f for _, _, f in self._tj], dtype=TRANSLATIONAL_CLEARANCE),
             contact=self._contact,

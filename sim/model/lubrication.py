@@ -20,7 +20,7 @@ torque −(e × F)/2 on each body, the moment of the pressure's Poiseuille shear
 surface, and the film's power into the bodies is exactly F·V.
 
 Cavitation: half-Sommerfeld (Gümbel), the film carries no negative pressure,
-p = max(p_full, 0). With it F·V ≤ 0 in both models below: the film only dissipates; the
+p = max(p_full, 0). With it F·V ≤ 0 in every model below: the film only dissipates; the
 energy audit books −F·V as dissipated power. The viscous (Couette) shear torque of the
 film, which is dissipative too, is neglected, as by Flores et al.
 
@@ -33,12 +33,17 @@ Models by L/D (`bearing_model`):
   d/dψ (H³ dp/dψ) = −(12 μ R²/c³) (V_r cos ψ + V_t sin ψ), periodic, zero at the thickest
   film ψ = π (the oil supply), in closed form; its positive part integrated by the
   trapezoid rule on LONG_NODES points of the Sommerfeld angle γ, which gathers them where
-  the film is thin.
-Between them no model is implemented: the scene refuses such a joint (sim.scene).
+  the film is thin;
+- finite bearing, SHORT_MAX < L/D < LONG_MIN: Reynolds' equation in ψ and z with the
+  pressure zero at the bearing's ends, solved once by finite volumes for a table of L/D, ε
+  and the direction α of V (sim.model.finite_bearing, stored in finite_bearing.npz), its
+  Gümbel force G interpolated: as a power of L/D between its neighbours when the system is
+  built, in the kernel linearly in ln(1/(1 − ε)) and as a cos α + b sin α in α;
+  F = −(12 μ R⁴/c³) |V| G.
 
-Integrals with the Sommerfeld substitution cos γ = (cos ψ − ε)/(1 − ε cos ψ), which turns
-dψ/H³ into (1 + ε cos γ)² dγ/(1 − ε²)^(5/2) and every integrand below into a trigonometric
-polynomial of γ.
+The short and long bearings' integrals with the Sommerfeld substitution
+cos γ = (cos ψ − ε)/(1 − ε cos ψ), which turns dψ/H³ into (1 + ε cos γ)² dγ/(1 − ε²)^(5/2)
+and every integrand below into a trigonometric polynomial of γ.
 
 Transition to contact (docs/model.md, "Lubricated revolute joints"): below the threshold
 film thickness h_t the asperities carry a growing share of the load. The film force is
@@ -48,14 +53,16 @@ the dry law, zero at zero penetration, acts alone. The force is continuous every
 w ≥ 0 times a dissipative force dissipates: no energy is created at the hand-over.
 """
 
+import functools
 import math
+from pathlib import Path
 
 import numpy as np
 
 from sim.jit import kernel, kernel_inline
 from sim.model.kinematics import apply_point_force_rotated, point_velocity_rotated
 
-BEARING_DRY, BEARING_SHORT, BEARING_LONG = 0, 1, 2
+BEARING_DRY, BEARING_SHORT, BEARING_LONG, BEARING_FINITE = 0, 1, 2, 3
 SHORT_MAX = 0.5
 """Largest L/D of the short-bearing model: its force is within about 10 % of the finite
 bearing's up to L/D = 0.5 at moderate ε, better below 0.25 (Frêne et al. §8.3)."""
@@ -67,9 +74,24 @@ LONG_NODES = 128
 steady forces within 1e-4 of the closed form of Pinkus & Sternlicht (tests/model/
 test_lubrication.py)."""
 
+FINITE_RATIOS = tuple(SHORT_MAX * (LONG_MIN / SHORT_MAX) ** (k / 12) for k in range(13))
+"""L/D of the finite bearing's table: 13, geometric from SHORT_MAX to LONG_MIN (steps of
+12 %), between which the table is interpolated as a power of L/D."""
+FINITE_ECCENTRICITY_MAX = 0.9995
+"""Largest ε of the table: a film threshold of 5e-4 of the clearance."""
+FINITE_ECCENTRICITIES = 77
+"""ε of the table, uniform in u = ln(1/(1 − ε)) from 0 to that of FINITE_ECCENTRICITY_MAX
+(steps of 0.1)."""
+FINITE_ANGLES = 72
+"""Angles α of V from n in the table, uniform from −π, every 5°."""
+FINITE_STEP_U = -math.log(1.0 - FINITE_ECCENTRICITY_MAX) / (FINITE_ECCENTRICITIES - 1)
+FINITE_STEP_ANGLE = 2.0 * math.pi / FINITE_ANGLES
+FINITE_TABLE = Path(__file__).with_name("finite_bearing.npz")
+"""The table, written by `python -m sim.model.finite_bearing`."""
+
 FILM = np.dtype(
     [
-        ("bearing", np.int64),  # BEARING_DRY, BEARING_SHORT or BEARING_LONG
+        ("bearing", np.int64),  # BEARING_DRY, _SHORT, _LONG or _FINITE
         ("viscosity", np.float64),  # μ, Pa·s
         ("length", np.float64),  # L, m
         ("threshold", np.float64),  # h_t, m
@@ -79,17 +101,53 @@ FILM = np.dtype(
 
 
 def bearing_model(length: float, journal_radius: float) -> int:
-    """BEARING_SHORT or BEARING_LONG for a bearing of length L (m) on a journal of radius
-    R (m); ValueError for L/D between SHORT_MAX and LONG_MIN, where neither holds."""
+    """BEARING_SHORT, BEARING_FINITE or BEARING_LONG for a bearing of length L (m) on a
+    journal of radius R (m), by L/D."""
     ratio = length / (2.0 * journal_radius)
     if ratio <= SHORT_MAX:
         return BEARING_SHORT
     if ratio >= LONG_MIN:
         return BEARING_LONG
-    raise ValueError(
-        f"L/D = {ratio:.3g} is neither a short bearing (L/D ≤ {SHORT_MAX:g}) nor a long one "
-        f"(L/D ≥ {LONG_MIN:g}); no finite-bearing model is implemented"
-    )
+    return BEARING_FINITE
+
+
+@functools.cache
+def _finite_table() -> tuple[np.ndarray, np.ndarray]:
+    """The stored table G (1 − ε²)² (L/D × ε × α × (n, t)) and its L/D; ValueError if its grid
+    is not the one declared here."""
+    stored = np.load(FINITE_TABLE)
+    table = stored["table"]
+    if table.shape[1:] != (FINITE_ECCENTRICITIES, FINITE_ANGLES, 2) or not np.allclose(
+        stored["ratios"], FINITE_RATIOS
+    ):
+        raise ValueError(
+            f"{FINITE_TABLE} does not match sim.model.lubrication's grid: "
+            "regenerate it with `python -m sim.model.finite_bearing`"
+        )
+    return table, stored["ratios"]
+
+
+def film_tables(films: np.ndarray, radii: np.ndarray) -> np.ndarray:
+    """The finite bearing's table at each joint's L/D (a power of L/D between the stored ones),
+    for
+    the joints' FILM rows `films` and journal radii (m); shape (joints, ε, α, 2), a single
+    zero entry per joint when no joint is a finite bearing."""
+    finite = films["bearing"] == BEARING_FINITE
+    if not finite.any():
+        return np.zeros((len(films), 1, 1, 2))
+    table, ratios = _finite_table()
+    out = np.zeros((len(films), *table.shape[1:]))
+    for j in np.flatnonzero(finite):
+        ratio = films["length"][j] / (2.0 * radii[j])
+        k = min(int(np.searchsorted(ratios, ratio)), len(ratios) - 1)
+        w = math.log(ratio / ratios[k - 1]) / math.log(ratios[k] / ratios[k - 1])
+        low, high = table[k - 1], table[k]
+        # a power of λ between neighbours (λ³ for a short bearing, λ for a long one);
+        # linear where a component changes sign
+        same = low * high > 0.0
+        power = np.abs(low) ** (1.0 - w) * np.abs(high) ** w * np.sign(low)
+        out[j] = np.where(same, power, (1.0 - w) * low + w * high)
+    return out
 
 
 def film_parameters(lubricant: dict | None, journal_radius: float) -> tuple:
@@ -197,6 +255,42 @@ def long_bearing_force(
 
 
 @kernel_inline
+def finite_bearing_force(
+    table: np.ndarray, eps: float, vr: float, vt: float, mu: float, radius: float, c: float
+) -> tuple[float, float]:
+    """Film force (F_n, F_t) (N) on the journal of a finite bearing whose table
+    G (1 − ε²)² (ε × α × (n, t), `film_tables`) is given: F = −(12 μ R⁴/c³) |V| G(ε, α),
+    linear in u = ln(1/(1 − ε)), harmonic in α (`_bilinear`)."""
+    speed = math.hypot(vr, vt)
+    if speed == 0.0:
+        return 0.0, 0.0
+    x = min(-math.log(1.0 - eps) / FINITE_STEP_U, FINITE_ECCENTRICITIES - 1.0 - 1e-9)
+    i = int(x)
+    fx = x - i
+    y = (math.atan2(vt, vr) + math.pi) / FINITE_STEP_ANGLE
+    k = int(y) % FINITE_ANGLES
+    fy = y - int(y)
+    scale = -12.0 * mu * radius**4 / c**3 * speed / (1.0 - eps * eps) ** 2
+    return (
+        scale * _bilinear(table, i, k, fx, fy, 0),
+        scale * _bilinear(table, i, k, fx, fy, 1),
+    )
+
+
+@kernel_inline
+def _bilinear(table: np.ndarray, i: int, k: int, fx: float, fy: float, m: int) -> float:
+    """Component m of `table` between ε rows i, i + 1 (linear, fraction fx) and angle columns
+    k, k + 1 (periodic, fraction fy) as a cos α + b sin α through both columns: exact where the
+    film's positive part keeps its place, since the pressure is linear in V."""
+    k1 = (k + 1) % FINITE_ANGLES
+    wk = math.sin((1.0 - fy) * FINITE_STEP_ANGLE) / math.sin(FINITE_STEP_ANGLE)
+    wk1 = math.sin(fy * FINITE_STEP_ANGLE) / math.sin(FINITE_STEP_ANGLE)
+    low = wk * table[i, k, m] + wk1 * table[i, k1, m]
+    high = wk * table[i + 1, k, m] + wk1 * table[i + 1, k1, m]
+    return (1.0 - fx) * low + fx * high
+
+
+@kernel_inline
 def film_weight(h: float, threshold: float) -> float:
     """Share w of the film in the load at minimum film thickness h (m): 1 above the threshold
     h_t, smoothstep s²(3 − 2s), s = h/h_t, below it, 0 at contact."""
@@ -218,8 +312,10 @@ def film_force(sys, j: int, eps: float, vr: float, vt: float) -> tuple[float, fl
     r = sys.rj[j].journal_radius
     if film.bearing == BEARING_SHORT:
         fn, ft = short_bearing_force(eps_f, vr, vt, film.viscosity, r, film.length, c)
-    else:
+    elif film.bearing == BEARING_LONG:
         fn, ft = long_bearing_force(eps_f, vr, vt, film.viscosity, r, film.length, c)
+    else:
+        fn, ft = finite_bearing_force(sys.rj_film_table[j], eps_f, vr, vt, film.viscosity, r, c)
     return w * fn, w * ft
 
 
