@@ -13,11 +13,11 @@ pure squeeze at the relative velocity V = ė − ω̄ k × e; its radial part V_
 squeeze term, its tangential part V_t = c ε (φ̇ − ω̄) carries the wedge term
 (Frêne et al., Hydrodynamic Lubrication, Elsevier 1997, ch. 8; Flores, Ambrósio, Claro &
 Lankarani, Mech. Mach. Theory 41, 2006, and Kinematics and Dynamics of Multibody Systems
-with Imperfect Joints, Springer 2008, ch. 6). V is the difference of the velocities of the
-journal's and the bearing's material points at the midpoint M of their centres, and the
-film force F (on the journal, −F on the bearing) is applied there: M's offsets ∓e/2 put the
-torque −(e × F)/2 on each body, the moment of the pressure's Poiseuille shear on each
-surface, and the film's power into the bodies is exactly F·V.
+with Imperfect Joints, Springer 2008, ch. 6). The angular velocities come from the bodies
+(a beam node's from its slope). The film force F acts on the journal at its centre, −F on
+the bearing at its centre, and each body takes the moment −(e × F)/2, that of the pressure's
+Poiseuille shear on its surface (the two balance the couple of ±F): the film's power into
+the bodies, F·ė − ω̄ (e × F)·k, is exactly F·V.
 
 Cavitation: half-Sommerfeld (Gümbel), the film carries no negative pressure,
 p = max(p_full, 0). With it F·V ≤ 0 in every model below: the film only dissipates; the
@@ -61,6 +61,7 @@ import numpy as np
 
 from sim.jit import kernel, kernel_inline
 from sim.model.kinematics import apply_point_force_rotated, point_velocity_rotated
+from sim.model.system import POINT_GROUND, POINT_NODE
 
 BEARING_DRY, BEARING_SHORT, BEARING_LONG, BEARING_FINITE = 0, 1, 2, 3
 SHORT_MAX = 0.5
@@ -319,6 +320,39 @@ def film_force(sys, j: int, eps: float, vr: float, vt: float) -> tuple[float, fl
     return w * fn, w * ft
 
 
+@kernel_inline
+def point_spin(sys, k: int, q: np.ndarray, qd: np.ndarray) -> float:
+    """Angular velocity (rad/s) of the body at point k: its frame's for a rigid body or modal
+    link, the slope's θ̇ = (r_x' ṙ_y' − r_y' ṙ_x')/|r'|² at a beam node, 0 on the ground."""
+    kind = sys.pt_kind[k]
+    o = sys.pt_off[k]
+    if kind == POINT_GROUND:
+        return 0.0
+    if kind == POINT_NODE:
+        sx = q[o + 2]
+        sy = q[o + 3]
+        return (sx * qd[o + 3] - sy * qd[o + 2]) / (sx * sx + sy * sy)
+    return qd[o + 2]
+
+
+@kernel_inline
+def apply_point_torque(sys, k: int, q: np.ndarray, torque: float, gen: np.ndarray) -> None:
+    """Add the generalized force of a torque (N·m) on the body at point k to `gen`: on its
+    angle, or at a beam node on its slope through ∂θ/∂r' = (−r_y', r_x')/|r'|²."""
+    kind = sys.pt_kind[k]
+    o = sys.pt_off[k]
+    if kind == POINT_GROUND:
+        return
+    if kind == POINT_NODE:
+        sx = q[o + 2]
+        sy = q[o + 3]
+        scale = torque / (sx * sx + sy * sy)
+        gen[o + 2] -= scale * sy
+        gen[o + 3] += scale * sx
+        return
+    gen[o + 2] += torque
+
+
 @kernel
 def lubricated_joint(
     sys,
@@ -333,25 +367,28 @@ def lubricated_joint(
     cj: float,
     sj: float,
 ) -> tuple[float, float, float]:
-    """Apply the film force of revolute clearance j at the midpoint of the centres (on the
-    journal, its opposite on the bearing); return its radial force on the journal towards
-    the centre and its tangential force (N), and the power the film dissipates, −F·V (W).
-    (ex, ey): the eccentricity (m); (c, s): the bearing's and the journal's cos θ, sin θ."""
+    """Apply the film force F of revolute clearance j at the journal's centre, −F at the
+    bearing's, and the moment −(e × F)/2 on each body (module docstring); return the radial
+    force on the journal towards the centre and the tangential force (N), and the power the
+    film dissipates, −F·V (W). (ex, ey): the eccentricity (m); (c, s): the bearing's and the
+    journal's cos θ, sin θ."""
     pb = sys.rj_pts[j, 0]
     pj = sys.rj_pts[j, 1]
     e = math.hypot(ex, ey)
     nx, ny = (ex / e, ey / e) if e > 0.0 else (1.0, 0.0)
-    hx = 0.5 * ex
-    hy = 0.5 * ey
-    vjx, vjy = point_velocity_rotated(sys, pj, q, qd, -hx, -hy, cj, sj)
-    vbx, vby = point_velocity_rotated(sys, pb, q, qd, hx, hy, cb, sb)
-    vx = vjx - vbx
-    vy = vjy - vby
+    vjx, vjy = point_velocity_rotated(sys, pj, q, qd, 0.0, 0.0, cj, sj)
+    vbx, vby = point_velocity_rotated(sys, pb, q, qd, 0.0, 0.0, cb, sb)
+    spin = 0.5 * (point_spin(sys, pj, q, qd) + point_spin(sys, pb, q, qd))
+    vx = vjx - vbx + spin * ey  # V = ė − ω̄ k × e
+    vy = vjy - vby - spin * ex
     vr = vx * nx + vy * ny
     vt = -vx * ny + vy * nx
     fn, ft = film_force(sys, j, e / sys.rj[j].clearance, vr, vt)
     fx = fn * nx - ft * ny
     fy = fn * ny + ft * nx
-    apply_point_force_rotated(sys, pj, q, fx, fy, -hx, -hy, gen, cj, sj)
-    apply_point_force_rotated(sys, pb, q, -fx, -fy, hx, hy, gen, cb, sb)
+    moment = -0.5 * (ex * fy - ey * fx)
+    apply_point_force_rotated(sys, pj, q, fx, fy, 0.0, 0.0, gen, cj, sj)
+    apply_point_force_rotated(sys, pb, q, -fx, -fy, 0.0, 0.0, gen, cb, sb)
+    apply_point_torque(sys, pj, q, moment, gen)
+    apply_point_torque(sys, pb, q, moment, gen)
     return -fn, ft, -(fx * vx + fy * vy)
