@@ -22,6 +22,7 @@ from typing import Any, NamedTuple
 
 import yaml
 
+from sim.model.lubrication import BEARING_FINITE, FINITE_ECCENTRICITY_MAX, bearing_model
 from sim.scene_keys import (
     BAR,
     BLOCK,
@@ -30,6 +31,7 @@ from sim.scene_keys import (
     DAMPING,
     DRIVE,
     HINT,
+    LUBRICANT,
     MATERIAL,
     NO_DEFAULT,
     OUTPUT,
@@ -277,6 +279,7 @@ def with_defaults(scene: dict) -> dict:
         for entry in entries.values() if isinstance(entries, dict) else ():
             if isinstance(entry, dict):
                 _fill(entry, spec(entry) or {})
+                _fill(entry.get("lubricant"), LUBRICANT)
     for key, spec in (
         ("output", OUTPUT),
         ("drive", DRIVE),
@@ -444,6 +447,8 @@ def key_field(scene: dict, key: str) -> Field | None:
         return (BLOCK if body.get("shape") == "block" else BAR).get(parts[2])
     if len(parts) == 3 and parts[0] == "joints" and parts[1] in scene["joints"]:
         return (_joint_table(scene["joints"][parts[1]]) or {}).get(parts[2])
+    if parts[:1] == ["joints"] and parts[2:3] == ["lubricant"] and len(parts) == 4:
+        return LUBRICANT.get(parts[3])
     if len(parts) == 3 and parts[0] == "materials":
         return MATERIAL.get(parts[2])
     return TOP.get(key)
@@ -623,5 +628,28 @@ def _check_joint(
                 f"{where}.clearance",
                 f"'{where}.clearance' = {joint['clearance']!r} must be smaller than "
                 f"'{where}.bearing_radius' = {joint['bearing_radius']!r}",
+            )
+        )
+    elif joint["lubricant"] is not None:
+        _check_lubricant(joint, f"{where}.lubricant", problems)
+
+
+def _check_lubricant(joint: dict, where: str, problems: list[Problem]) -> None:
+    """Problems of a revolute joint's `lubricant` block: its keys and a threshold below the
+    clearance, within the finite bearing's table for such a bearing (sim.model.lubrication)."""
+    lubricant = joint["lubricant"]
+    if not _check_section(lubricant, LUBRICANT, where, problems) or joint["clearance"] == 0.0:
+        return
+    clearance = joint["clearance"]
+    lowest = 0.0
+    if bearing_model(lubricant["length"], joint["bearing_radius"] - clearance) == BEARING_FINITE:
+        lowest = clearance * (1.0 - FINITE_ECCENTRICITY_MAX)
+    if not lowest <= lubricant["threshold"] < clearance:
+        problems.append(
+            Problem(
+                f"{where}.threshold",
+                f"'{where}.threshold' = {lubricant['threshold']!r} is not accepted; expected "
+                f"{lowest:.4g} ≤ x < {clearance!r} m: below the joint's clearance"
+                + (", and a film no thinner than the finite bearing's table" if lowest else ""),
             )
         )

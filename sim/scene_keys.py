@@ -259,6 +259,37 @@ REVOLUTE = {
         doc="bearing (hole) radius of a clearance joint, above `clearance` "
         "(ASSUMED, the six-bar's); unused when the joint is ideal",
     ),
+    "lubricant": _opt(
+        "mapping",
+        None,
+        "an oil film in the clearance (table `joints.<name>.lubricant`, docs/model.md, "
+        '"Lubricated revolute joints"); null: dry; unused when the joint is ideal',
+    ),
+}
+LUBRICANT = {
+    "viscosity": _num(1e-4, 10.0, "Pa s", doc="the oil's dynamic viscosity μ at its temperature"),
+    "length": _num(
+        0.0,
+        1.0,
+        "m",
+        open_min=True,
+        doc="bearing length L along the pin; L/D (D the journal's diameter) chooses the "
+        "model: short bearing (Ocvirk) for L/D ≤ 0.5, long bearing (Sommerfeld) for L/D ≥ 2, "
+        "a Reynolds solution tabulated for L/D between",
+    ),
+    "threshold": _num(
+        0.0,
+        1e-4,
+        "m",
+        open_min=True,
+        default=1.5e-6,
+        doc="minimum film thickness h_t below which the dry contact law takes over "
+        "(smoothly, reaching it alone at zero film); below the joint's `clearance`, and for "
+        "a finite bearing at least 5e-4 of it (its table's end). Default "
+        "(ASSUMED): 3 σ, the film parameter Λ = h/σ = 3 where full-film lubrication ends "
+        "(Hamrock, Fundamentals of Fluid Film Lubrication), σ = 0.5 µm the composite RMS "
+        "roughness of a ground pin (0.35 µm) in a honed bore (0.35 µm)",
+    ),
 }
 WELD = {
     **JOINT_COMMON,
@@ -434,6 +465,7 @@ TABLES: dict[str, dict[str, Field]] = {
     "bodies.<name>.hint": HINT,
     "bodies.<name>.damping": DAMPING,
     "joints.<name> (revolute)": REVOLUTE,
+    "joints.<name>.lubricant": LUBRICANT,
     "joints.<name> (translational)": TRANSLATIONAL,
     "joints.<name> (weld)": WELD,
     "drive": DRIVE,

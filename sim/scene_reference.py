@@ -20,6 +20,8 @@ A scene is a YAML file describing one planar linkage and how to simulate it. Loa
 (`sim run my-linkage.yaml -o run.nc`) or by the name of a built-in scene:
 
 - `sixbar`: the six-bar press of the paper (docs/model.md, docs/assumptions.md);
+- `sixbar-lubricated`: the six-bar with an oil film in joint A's 0.5 mm clearance (a long
+  journal bearing; its oil and length ASSUMED, docs/assumptions.md);
 - `fourbar`: a crank-rocker four-bar with a 0.3 mm clearance at the coupler-rocker joint,
   written as a short scene: no contact, simulation or solver block (every numerical setting
   is a default below);

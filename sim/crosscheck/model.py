@@ -233,6 +233,10 @@ class _Builder:
             if name in clearance:
                 j = clearance.index(name)
                 if kind == "revolute":
+                    if joint["lubricant"] is not None:
+                        raise CrossCheckError(
+                            f"joints.{name}.lubricant: the Exudyn cross-check has no oil film"
+                        )
                     contacts.append(self._revolute_clearance(joint, j))
                     joint_points[name] = tuple(
                         self._point_sensors(b, p)

@@ -197,7 +197,7 @@ def _add_joint(builder: SystemBuilder, scene: dict, name: str, joint: dict, idea
     else:
         r_b = joint["bearing_radius"]
         k = revolute_stiffness(r_b, r_b - clearance, _joint_modulus(scene, pair))
-        builder.add_revolute_clearance(name, p0, p1, r_b, clearance, k)
+        builder.add_revolute_clearance(name, p0, p1, r_b, clearance, k, joint["lubricant"])
 
 
 def _add_weld(

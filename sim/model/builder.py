@@ -13,6 +13,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from sim.model import ancf, beams, modal
+from sim.model.lubrication import FILM, film_parameters, film_tables
 from sim.model.system import (
     BEAM,
     CON_CLAMP,
@@ -97,6 +98,7 @@ class SystemBuilder:
         self._rows: list[tuple[str, int, int]] = []
         self._m = 0
         self._rj: list[tuple[str, tuple[int, int], tuple[float, ...]]] = []
+        self._rj_film: list[tuple] = []  # FILM rows, one for each of _rj
         self._tj: list[tuple[str, int, tuple[float, ...]]] = []
         self._drive = (-1, -1)
         # (point, body) of the output point (`set_output`); by default the first body's centre
@@ -273,12 +275,21 @@ class SystemBuilder:
         self.add_constraint(owner, CON_CLAMP, (b.offset,), pose)
 
     def add_revolute_clearance(
-        self, owner: str, p0: int, p1: int, bearing_radius: float, clearance: float, k: float
+        self,
+        owner: str,
+        p0: int,
+        p1: int,
+        bearing_radius: float,
+        clearance: float,
+        k: float,
+        lubricant: dict | None = None,
     ) -> None:
         """A revolute clearance joint between bearing point p0 and journal point p1, Hertz
-        stiffness k (N/m^1.5) (sim.model.clearance)."""
+        stiffness k (N/m^1.5) (sim.model.clearance), with the oil film of a `lubricant` block
+        (sim.model.lubrication) or dry (None)."""
         journal_radius = bearing_radius - clearance
         self._rj.append((owner, (p0, p1), (bearing_radius, journal_radius, clearance, k)))
+        self._rj_film.append(film_parameters(lubricant, journal_radius))
 
     def add_slider_clearance(
         self,
@@ -324,6 +335,7 @@ class SystemBuilder:
         beam_f = [f for _, _, f in self._beams]
         md = list(zip(*self._modal, strict=True)) or [()] * 6
         drive_row, drive_coord = self._drive
+        films = np.array(self._rj_film, dtype=FILM)
         system = System(
             n=n,
             m=self._m,
@@ -346,6 +358,8 @@ class SystemBuilder:
             drive_coord=drive_coord,
             rj_pts=np.array([p for _, p, _ in self._rj], dtype=np.int64).reshape(-1, 2),
             rj=np.array([f for _, _, f in self._rj], dtype=REVOLUTE_CLEARANCE),
+            rj_film=films,
+            rj_film_table=film_tables(films, np.array([f[1] for _, _, f in self._rj])),
             tj_off=np.array([o for _, o, _ in self._tj], dtype=np.int64),
             tj=np.array([f for _, _, f in self._tj], dtype=TRANSLATIONAL_CLEARANCE),
             contact=self._contact,

@@ -5,7 +5,9 @@ Revolute clearance (bearing point B on one body, journal point J on the other):
 contact points Q_J = r_J + R_J n and Q_B = r_B + R_B n; δ̇ = n·ė; slip v_t is the
 tangential relative velocity of the material points at Q_J and Q_B. The force
 −F_n n + F_t t acts on the journal at Q_J and its opposite on the bearing at Q_B
-(Flores & Ambrósio, Comput. Struct. 82, 2004).
+(Flores & Ambrósio, Comput. Struct. 82, 2004). A lubricated one adds its oil film's force
+(sim.model.lubrication); its outputs `normal_force` and `friction_force` are then the radial
+(towards the centre) and tangential forces of film and contact together.
 
 Translational clearance (rigid slider of length L and width W in a ground guide
 of width H through point p with direction t_g and normal n_g): each corner i is
@@ -44,6 +46,7 @@ from sim.model.kinematics import (
     point_rotation,
     point_velocity_rotated,
 )
+from sim.model.lubrication import BEARING_DRY, lubricated_joint
 from sim.model.system import (
     OUT_FRICTION_FORCE,
     OUT_NORMAL_FORCE,
@@ -265,6 +268,11 @@ def revolute_clearance_forces(
         jout[j, OUT_NORMAL_FORCE] = 0.0
         jout[j, OUT_FRICTION_FORCE] = 0.0
         jout[j, OUT_STATE] = 0.0
+        if sys.rj_film[j].bearing != BEARING_DRY:
+            film_n, film_t, p_film = lubricated_joint(sys, j, q, qd, gen, ex, ey, cb, sb, cj, sj)
+            p_diss += p_film
+            jout[j, OUT_NORMAL_FORCE] = film_n
+            jout[j, OUT_FRICTION_FORCE] = film_t
         if delta <= 0.0:
             continue
         k = sys.rj[j].stiffness
@@ -291,8 +299,8 @@ def revolute_clearance_forces(
         apply_point_force_rotated(sys, pb, q, -fx, -fy, rb * nx, rb * ny, gen, cb, sb)
         p_diss += (fn - fel) * rate - ft * slip
         u_contact += fel * delta / (ce.exponent + 1.0)
-        jout[j, OUT_NORMAL_FORCE] = fn
-        jout[j, OUT_FRICTION_FORCE] = ft
+        jout[j, OUT_NORMAL_FORCE] += fn
+        jout[j, OUT_FRICTION_FORCE] += ft
         jout[j, OUT_STATE] = 1.0
     return p_diss, u_contact
 

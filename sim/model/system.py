@@ -125,6 +125,8 @@ class System(NamedTuple):
     drive_coord: int  # coordinate the drive prescribes, -1 if none
     rj_pts: np.ndarray  # (nr, 2) bearing and journal point of each revolute clearance
     rj: np.ndarray  # (nr,) REVOLUTE_CLEARANCE parameters
+    rj_film: np.ndarray  # (nr,) sim.model.lubrication.FILM: each one's oil film, if any
+    rj_film_table: np.ndarray  # (nr, ε, α, 2) finite bearings' film table (film_tables)
     tj_off: np.ndarray  # (nt,) slider body offset of each translational clearance
     tj: np.ndarray  # (nt,) TRANSLATIONAL_CLEARANCE parameters
     contact: ContactLaw
