@@ -1,6 +1,7 @@
 """The effective coefficient of restitution of every damping law against its nominal e, at
-impact speeds 1e-5 to 1 m/s (1e-5 below the damping guard v_min = 1e-4 m/s) (`sim restitution`, sim.model.restitution): the table of
-docs/model.md, "Contact laws", printed as Markdown.
+impact speeds 1e-5 to 1 m/s (1e-5 below the damping guard v_min = 1e-4 m/s), by
+`sim restitution` (sim.model.restitution): the table of docs/model.md, "Contact laws", printed
+as Markdown.
 
 Usage:
     python benchmarks/restitution_table.py

@@ -131,7 +131,7 @@ def test_a_joint_overrides_the_scenes_law():
 
 
 def test_an_unknown_law_is_refused_naming_the_key():
-    with pytest.raises(SceneError, match="joints.A.law"):
+    with pytest.raises(SceneError, match=r"joints\.A\.law"):
         load_scene("sixbar", ["joints.A.clearance=5e-4", "joints.A.law=newton"])
 
 
