@@ -20,8 +20,9 @@ from dataclasses import dataclass, field
 from fractions import Fraction
 
 import numpy as np
-from exponent_invariance import POINTS, interval_stretch
+from exponent_invariance import POINTS
 
+from sim.analysis.lyapunov import interval_stretch
 from sim.scene import load_scene
 from sim.studies.model_lyapunov import (
     LinkagePropagator,

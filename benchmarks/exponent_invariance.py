@@ -26,7 +26,7 @@ from fractions import Fraction
 
 import numpy as np
 
-from sim.analysis.lyapunov import BenettinResult
+from sim.analysis.lyapunov import BenettinResult, interval_stretch
 from sim.scene import load_scene
 from sim.studies.model_lyapunov import linkage_lyapunov
 
@@ -60,13 +60,6 @@ def link_overrides(links: str) -> list[str]:
             "solver.method=generalized_alpha"
         ]
     raise SystemExit(f"unknown link model '{links}': rigid, modal-B-A or beam-E")
-
-
-def interval_stretch(result: BenettinResult) -> np.ndarray:
-    """The logarithmic stretch ln(d / d0) of every recorded interval: the running estimate
-    times the recorded time, differenced."""
-    recorded = result.time - (result.time[0] - result.interval)
-    return np.diff(result.running * recorded, prepend=0.0)
 
 
 def stretch(result: BenettinResult) -> dict:

@@ -276,6 +276,7 @@ def prepare(
         # one row per revolution (ending at each section), one more for what follows the last
         rev_peaks=np.zeros((sec_t.size + 1, n_peaks)),
         rev_events=np.zeros(sec_t.size + 1, dtype=np.int64),
+        gap_onsets=np.zeros(mem.shape[0], dtype=np.int64),
         means=make_means(
             width,
             n_bodies,

@@ -11,6 +11,12 @@ import math
 from dataclasses import dataclass, replace
 from typing import Any
 
+from sim.model.contact_laws import (
+    DEFAULT_LAW,
+    DEFAULT_STIFFNESS,
+    LAW_NAMES,
+    STIFFNESS_LAWS,
+)
 from sim.quantities import SAMPLINGS
 
 
@@ -247,8 +253,34 @@ JOINT_COMMON = {
         doc="radial (revolute) or per-side (translational) clearance; 0 = an ideal joint",
     ),
 }
+#: the per-joint choice of a clearance joint's damping law (revolute and translational)
+JOINT_LAW = {
+    "law": _opt(
+        "str",
+        None,
+        'damping law of this clearance joint (docs/model.md, "Contact laws"); null: the '
+        "scene's `contact.law`",
+        choices=LAW_NAMES,
+    ),
+}
 REVOLUTE = {
     **JOINT_COMMON,
+    **JOINT_LAW,
+    "stiffness_law": _opt(
+        "str",
+        None,
+        "stiffness law of this revolute clearance joint; null: the scene's `contact.stiffness_law`",
+        choices=tuple(law.name for law in STIFFNESS_LAWS),
+    ),
+    "bearing_length": _num(
+        0.0,
+        1.0,
+        "m",
+        open_min=True,
+        default=None,
+        doc="axial length L of the bearing: Johnson's stiffness law only, which needs it "
+        "(ASSUMED when given: the paper's model is planar)",
+    ),
     "points": Field("list", doc="the point of each body that the joint pins together"),
     "bearing_radius": _num(
         0.0,
@@ -297,6 +329,7 @@ WELD = {
 }
 TRANSLATIONAL = {
     **JOINT_COMMON,
+    **JOINT_LAW,
     "guide_point": Field("vector2", -1e3, 1e3, unit="m", doc="a point of the guide's axis"),
     "guide_angle_deg": _num(-360, 360, "deg", doc="direction of the guide's axis"),
 }
@@ -306,12 +339,28 @@ DRIVE = {
     "initial_angle_deg": _num(-360, 360, "deg", default=0.0, doc="crank angle at t = 0"),
 }
 CONTACT = {
+    "law": _opt(
+        "str",
+        DEFAULT_LAW,
+        "damping law of every clearance joint without a `law` of its own (docs/model.md, "
+        '"Contact laws"): lankarani-nikravesh (the paper\'s), hunt-crossley, flores and '
+        "gonthier-carvalho remember the onset rate; tsuji has no memory",
+        choices=LAW_NAMES,
+    ),
     "restitution": _num(
         0.0,
         1.0,
         open_min=True,
         default=0.9,
-        doc="coefficient of restitution of the Lankarani-Nikravesh damping",
+        doc="nominal coefficient of restitution e of the damping law",
+    ),
+    "stiffness_law": _opt(
+        "str",
+        DEFAULT_STIFFNESS,
+        "stiffness law of every revolute clearance joint without one of its own: hertz (point "
+        "contact, the paper's) or johnson (conformal cylinders, needs the joint's "
+        "`bearing_length`); slider corners and faces keep theirs",
+        choices=tuple(law.name for law in STIFFNESS_LAWS),
     ),
     "friction": _num(0.0, 2.0, default=0.15, doc="Coulomb friction coefficient"),
     "v0": _num(
@@ -346,7 +395,7 @@ CONTACT = {
         "m/s",
         open_min=True,
         default=1.0e-4,
-        doc="guard of the Lankarani-Nikravesh damping for resting or grazing contact (ASSUMED)",
+        doc="guard of the damping laws with memory for resting or grazing contact (ASSUMED)",
     ),
     "slider_law": _opt(
         "str",

@@ -68,6 +68,13 @@ class BenettinResult:
     transient_intervals: int
 
 
+def interval_stretch(result: BenettinResult) -> np.ndarray:
+    """The logarithmic stretch ln(d / d0) of every recorded renormalisation interval: the
+    running estimate times the recorded time, differenced."""
+    recorded = result.time - (result.time[0] - result.interval)
+    return np.diff(result.running * recorded, prepend=0.0)
+
+
 def rhs_propagator(
     f: Callable[[float, np.ndarray], np.ndarray],
     *,

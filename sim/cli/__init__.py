@@ -1,6 +1,6 @@
-"""The `sim` command line: run | scene | analyze | sweep | plot | experiment.
+"""The `sim` command line: run | scene | analyze | sweep | plot | experiment | restitution.
 
-One module per group of subcommands (simulate, analyze, plot, experiment), each with a
+One module per group of subcommands (simulate, analyze, plot, experiment, restitution), each with a
 `register(subparsers)`; `arguments` holds what they share. Nothing outside this package
 imports it, so the command line sits on top of the library and no import cycle runs through it.
 
@@ -11,6 +11,7 @@ imports it, so the command line sits on top of the library and no import cycle r
     sim sweep sixbar --key joints.A.clearance --range 0 1e-3 11 --out-dir runs -o bifurcation.nc
     sim plot bifurcation.nc -o bifurcation.svg      # a run, an analysis or a sweep
     sim experiment synthesize | compare ...
+    sim restitution --law tsuji --nominal 0.5 --speed 0.1 --json
 
 Ctrl-C prints one line (what was interrupted, at which simulated time or sweep point, what was
 kept) and exits with code 130; no output is left half-written. Errors in the input (scene,
@@ -26,7 +27,7 @@ import sys
 from collections.abc import Sequence
 
 from sim import __version__
-from sim.cli import analyze, experiment, plot, simulate
+from sim.cli import analyze, experiment, plot, restitution, simulate
 
 #: the exit code of a command stopped by Ctrl-C (SIGINT): 128 + 2, as a shell reports it
 INTERRUPTED = 130
@@ -44,6 +45,7 @@ def build_parser() -> argparse.ArgumentParser:
     analyze.register_sweep(sub)
     plot.register(sub)
     experiment.register(sub)
+    restitution.register(sub)
     return parser
 
 

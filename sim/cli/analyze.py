@@ -17,6 +17,8 @@ DEFAULT_TRANSIENT_REVOLUTIONS = 20
 TRANSIENT = Field("int", 0, unit="revolutions")
 #: the variables of a model exponent (sim.studies.model_lyapunov.model_lyapunov_dataset)
 MODEL_VARIABLES = ("model_lyapunov_exponent", "model_lyapunov_stderr")
+#: what a model exponent may hold besides (`model_lyapunov_dataset` with its onset shares)
+MODEL_SHARES = ("model_lyapunov_onset_stretch_share", "model_lyapunov_onset_interval_share")
 
 
 def default_transient(n_revolutions: int) -> int:
@@ -137,21 +139,21 @@ def _model_lyapunov(run: xr.Dataset, transient: int) -> xr.Dataset:
     from sim.results import scene_of
     from sim.studies.model_lyapunov import (
         exponent_tolerances,
-        linkage_lyapunov,
+        linkage_exponent,
         model_lyapunov_dataset,
     )
 
     if "scene" not in run.attrs:
         raise ValueError("missing global attribute 'scene' (the run's resolved scene as JSON)")
     scene = scene_of(run)
-    result = linkage_lyapunov(
+    result, shares = linkage_exponent(
         scene,
         revolutions=scene["simulation"]["revolutions"],
         transient_revolutions=transient,
         ideal=bool(run.attrs.get("model_ideal", 0)),
         rigid=bool(run.attrs.get("model_rigid", 0)),
     )
-    return model_lyapunov_dataset(result, exponent_tolerances(scene))
+    return model_lyapunov_dataset(result, exponent_tolerances(scene), shares)
 
 
 def _exponent_file(path: Path) -> xr.Dataset:
@@ -166,7 +168,8 @@ def _exponent_file(path: Path) -> xr.Dataset:
             f"{path}: no variable {missing[0]!r}: give a file written by `sim analyze "
             "--model-lyapunov` or the workflow's rule model_exponent"
         )
-    return ds[list(MODEL_VARIABLES)].assign_attrs(
+    shares = [name for name in MODEL_SHARES if name in ds]
+    return ds[[*MODEL_VARIABLES, *shares]].assign_attrs(
         {k: v for k, v in ds.attrs.items() if k.startswith("model_lyapunov_")}
     )
 

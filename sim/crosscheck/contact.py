@@ -18,8 +18,9 @@ the offset of a contact point on it carries no moment (docs/model.md: pins act o
 
 Revolute clearance (bearing B on the first body, journal J on the second; Flores & Ambrósio,
 Comput. Struct. 82, 2004): e = r_J − r_B, n = e/|e|, t = k × n, δ = |e| − c, δ̇ = n·ė. In
-contact (δ > 0) the Lankarani–Nikravesh normal force (J. Mech. Des. 112, 1990)
-    F_n = max(0, K δ^p [1 + 3(1 − c_e²) δ̇ / (4 max(δ̇⁻, v_min))])
+contact (δ > 0) the normal force of the joint's damping law on its elastic force, e.g.
+Lankarani–Nikravesh (J. Mech. Des. 112, 1990)
+    F_n = max(0, K δ^p [1 + 3(1 − c_e²) δ̇ / (4 max(δ̇⁻, v_min))]),
 and the modified Coulomb friction F_t = −μ c_d(|v_t|) F_n sign(v_t) (Ambrósio 2002), v_t the
 slip of the material points Q_J = r_J + R_J n and Q_B = r_B + R_B n along t; the force
 −F_n n + F_t t acts on the journal at Q_J and its opposite on the bearing at Q_B.
@@ -28,8 +29,14 @@ Translational clearance, continuous (Winkler) slider law: each long edge of the 
 guide wall is pressed into an elastic foundation of stiffness K_face / L per unit length. With
 end depths δa, δb the penetrated part is the edge (a trapezoid, force K_face (δa + δb)/2) or a
 triangle of length ℓ = L δa / (δa − δb) from the deeper end (force K_face δa ℓ / (2 L)); the
-force acts at the centroid of that area, with Lankarani–Nikravesh hysteresis from the normal
-rate of the material point there and friction along the guide from its slip.
+force acts at the centroid of that area, with the joint's damping law from the normal rate of
+the material point there and friction along the guide from its slip.
+
+The damping laws and Johnson's stiffness are the one exception to "written anew": they are
+evaluated by the compiled kernels themselves (`sim.model.contact.normal_force`,
+`sim.model.contact.johnson_elastic`, called from Python), so that each law exists once, as
+one entry of `sim.model.contact_laws.LAWS`; the laws are checked on their own against
+closed forms and an independent integration (`sim restitution`, tests/model/test_contact_laws.py).
 
 The onset rate δ̇⁻ of each contact is a memory: `ContactMemory` sets it once per step, at the
 step's start, to the normal rate interpolated linearly to the crossing δ = 0 between the last
@@ -43,6 +50,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from sim.model.contact import johnson_elastic, normal_force
+from sim.model.contact_laws import STIFFNESS_JOHNSON
 from sim.model.system import (
     System,
 )
@@ -95,10 +104,12 @@ class Point:
 
 @dataclass(frozen=True)
 class Law:
-    """Contact law constants: restitution c_e, friction μ, Coulomb tolerances v0 < v1 (m/s),
-    the damping guard v_min (m/s) and the Hertz exponent p."""
+    """Contact law constants: friction μ, Coulomb tolerances v0 < v1 (m/s), the damping guard
+    v_min (m/s) and the Hertz exponent p; the joint's damping law code and its coefficient
+    (sim.model.contact_laws)."""
 
-    restitution: float
+    code: int
+    damping: float
     friction: float
     v0: float
     v1: float
@@ -106,11 +117,13 @@ class Law:
     exponent: float
 
     @classmethod
-    def from_system(cls, system: System) -> "Law":
-        """The scene's contact law constants as compiled into `system`."""
+    def from_system(cls, system: System, joint: np.void, damping: str = "damping") -> "Law":
+        """The contact law constants compiled into `system`, with the damping law of a joint's
+        data (`system.rj[j]` or `system.tj[j]`) and its coefficient field `damping`."""
         c = system.contact
         return cls(
-            restitution=c.restitution,
+            code=int(joint["law"]),
+            damping=float(joint[damping]),
             friction=c.friction,
             v0=c.v0,
             v1=c.v1,
@@ -118,10 +131,14 @@ class Law:
             exponent=c.exponent,
         )
 
-    def hysteresis(self, elastic: float, rate: float, onset: float) -> float:
-        """Lankarani–Nikravesh normal force (N) from its elastic part (N), never negative."""
-        v_ref = max(onset, self.min_impact_speed)
-        return max(0.0, elastic * (1.0 + 0.75 * (1.0 - self.restitution**2) * rate / v_ref))
+    def hysteresis(
+        self, elastic: float, delta: float, rate: float, onset: float, exponent: float
+    ) -> float:
+        """Normal force (N) of the damping law on its elastic part (N) at penetration δ (m),
+        never negative (`sim.model.contact.normal_force`)."""
+        return normal_force(
+            self.code, self.damping, elastic, delta, rate, onset, exponent, self.min_impact_speed
+        )
 
     def friction_force(self, normal: float, slip: float) -> float:
         """Modified Coulomb friction (N) against the slip velocity (m/s)."""
@@ -165,7 +182,8 @@ class ContactMemory:
 
 @dataclass
 class RevoluteClearance:
-    """Journal J in bearing B: radii R_B, R_J (m), clearance c (m), Hertz stiffness K."""
+    """Journal J in bearing B: radii R_B, R_J (m), clearance c (m), stiffness K (N/m^p) and
+    its law's code (Hertz; Johnson's with K = π L E*, N/m)."""
 
     bearing: Point
     journal: Point
@@ -173,6 +191,7 @@ class RevoluteClearance:
     r_journal: float
     clearance: float
     stiffness: float
+    stiffness_law: int
     law: Law
     memory: ContactMemory = field(init=False)
 
@@ -192,7 +211,8 @@ class RevoluteClearance:
             r_journal=f["journal_radius"],
             clearance=f["clearance"],
             stiffness=f["stiffness"],
-            law=Law.from_system(system),
+            stiffness_law=int(f["stiffness_law"]),
+            law=Law.from_system(system, f),
         )
 
     def gaps(self, x: np.ndarray, v: np.ndarray) -> list[tuple[float, float]]:
@@ -219,9 +239,11 @@ class RevoluteClearance:
         nx, ny = ex / e, ey / e
         rate = nx * vx + ny * vy
         law = self.law
-        fn = law.hysteresis(
-            self.stiffness * delta**law.exponent, rate, self.memory.onset_rate(0, rate)
-        )
+        if self.stiffness_law == STIFFNESS_JOHNSON:
+            elastic, _ = johnson_elastic(self.stiffness, self.clearance, delta)
+        else:
+            elastic = self.stiffness * delta**law.exponent
+        fn = law.hysteresis(elastic, delta, rate, self.memory.onset_rate(0, rate), law.exponent)
         ojx, ojy = self.r_journal * nx, self.r_journal * ny
         obx, oby = self.r_bearing * nx, self.r_bearing * ny
         jvx, jvy = self.journal.velocity(x, v, ojx, ojy)
@@ -270,7 +292,7 @@ class SliderClearance:
             width=f["width"],
             gap_width=f["gap_width"],
             face_stiffness=f["k_face"],
-            law=Law.from_system(system),
+            law=Law.from_system(system, f, "face_damping"),
         )
 
     def _corner(self, x, v, i: int, side: float):
@@ -317,7 +339,7 @@ class SliderClearance:
                 onset = max(mem.onset[g] if mem.flag[g] else 0.0 for g in (ga, gb))
             else:
                 onset = rate
-            fn = self.law.hysteresis(elastic, rate, onset)
+            fn = self.law.hysteresis(elastic, max(da, db), rate, onset, 1.0)
             cx, cy = aax + frac * (abx - aax), aay + frac * (aby - aay)
             vx, vy = self.slider.velocity(x, v, cx, cy)
             tx, ty = self.tangent

@@ -16,6 +16,13 @@ from sim.model.contact import (
     face_stiffness,
     revolute_stiffness,
 )
+from sim.model.contact_laws import (
+    LAW_CODES,
+    LAWS,
+    STIFFNESS_CODES,
+    STIFFNESS_JOHNSON,
+    damping_coefficient,
+)
 from sim.model.system import (
     CON_PRISMATIC,
     CON_REVOLUTE,
@@ -176,15 +183,18 @@ def _add_joint(builder: SystemBuilder, scene: dict, name: str, joint: dict, idea
         length, width, depth = bodies[slider]["size"]
         mat = scene["materials"][bodies[slider]["material"]]
         e, nu = mat["youngs_modulus"], mat["poisson"]
+        k_face = face_stiffness(length + depth, e, nu, e, nu)
+        k_corner = corner_stiffness(scene["contact"]["corner_radius"], _joint_modulus(scene, pair))
+        law = joint_law(scene, joint)
+        mass = effective_mass(scene, pair)
+        exponent = scene["contact"]["exponent"]
+        damping = (
+            LAW_CODES[law],
+            _damping(scene, law, exponent, mass, k_corner),
+            _damping(scene, law, 1.0, mass, k_face),
+        )
         builder.add_slider_clearance(
-            name,
-            slider,
-            guide,
-            length,
-            width,
-            width + 2.0 * clearance,
-            face_stiffness(length + depth, e, nu, e, nu),
-            corner_stiffness(scene["contact"]["corner_radius"], _joint_modulus(scene, pair)),
+            name, slider, guide, length, width, width + 2.0 * clearance, k_face, k_corner, damping
         )
         return
     where = f"joints.{name}.points"
@@ -196,8 +206,68 @@ def _add_joint(builder: SystemBuilder, scene: dict, name: str, joint: dict, idea
         builder.add_constraint(name, CON_REVOLUTE, (p0, p1))
     else:
         r_b = joint["bearing_radius"]
-        k = revolute_stiffness(r_b, r_b - clearance, _joint_modulus(scene, pair))
-        builder.add_revolute_clearance(name, p0, p1, r_b, clearance, k, joint["lubricant"])
+        stiffness = revolute_stiffness_law(scene, name, joint, clearance)
+        law = joint_law(scene, joint)
+        if stiffness[0] == STIFFNESS_JOHNSON and not LAWS[LAW_CODES[law]].memory:
+            raise AssemblyError(
+                f"joints.{name}: the damping law '{law}' has no memory and needs a power-law "
+                "stiffness; Johnson's law is not one (choose stiffness_law: hertz)"
+            )
+        coefficient = _damping(
+            scene, law, scene["contact"]["exponent"], effective_mass(scene, pair), stiffness[1]
+        )
+        builder.add_revolute_clearance(
+            name,
+            p0,
+            p1,
+            r_b,
+            clearance,
+            stiffness,
+            (LAW_CODES[law], coefficient),
+            joint["lubricant"],
+        )
+
+
+def joint_law(scene: dict, joint: dict) -> str:
+    """The damping law of a clearance joint: its own `law`, else the scene's `contact.law`."""
+    return joint["law"] or scene["contact"]["law"]
+
+
+def _damping(scene: dict, law: str, exponent: float, mass: float, stiffness: float) -> float:
+    """The coefficient a joint stores for damping law `law` (sim.model.contact_laws)."""
+    return damping_coefficient(law, scene["contact"]["restitution"], exponent, mass, stiffness)
+
+
+def effective_mass(scene: dict, names: list[str]) -> float:
+    """m* = m₁ m₂ / (m₁ + m₂) (kg) of the two bodies a clearance joint joins, each body's
+    whole mass (the ground's infinite): the mass scale of the damping law without memory
+    (an assumption, docs/assumptions.md)."""
+    bodies = scene["bodies"]
+    inverse = sum(
+        1.0 / body_mass_properties(bodies[n], scene["materials"][bodies[n]["material"]])[0]
+        for n in names
+        if n != GROUND
+    )
+    return 1.0 / inverse
+
+
+def revolute_stiffness_law(
+    scene: dict, name: str, joint: dict, clearance: float
+) -> tuple[int, float]:
+    """The stiffness law's code and stiffness of revolute clearance `name`: Hertz K
+    (N/m^n) or Johnson's line stiffness π L E* (N/m), by the joint's `stiffness_law`, else
+    the scene's `contact.stiffness_law`."""
+    code = STIFFNESS_CODES[joint["stiffness_law"] or scene["contact"]["stiffness_law"]]
+    r_b = joint["bearing_radius"]
+    e_star = _joint_modulus(scene, joint["bodies"])
+    if code == STIFFNESS_JOHNSON:
+        if joint["bearing_length"] is None:
+            raise AssemblyError(
+                f"joints.{name}: Johnson's stiffness law needs 'joints.{name}.bearing_length' "
+                "(the bearing's axial length, m)"
+            )
+        return code, math.pi * joint["bearing_length"] * e_star
+    return code, revolute_stiffness(r_b, r_b - clearance, e_star)
 
 
 def _add_weld(

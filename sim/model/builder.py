@@ -281,14 +281,18 @@ class SystemBuilder:
         p1: int,
         bearing_radius: float,
         clearance: float,
-        k: float,
+        stiffness: tuple[int, float],
+        damping: tuple[int, float],
         lubricant: dict | None = None,
     ) -> None:
-        """A revolute clearance joint between bearing point p0 and journal point p1, Hertz
-        stiffness k (N/m^1.5) (sim.model.clearance), with the oil film of a `lubricant` block
-        (sim.model.lubrication) or dry (None)."""
+        """A revolute clearance joint between bearing point p0 and journal point p1: its
+        stiffness law's code and stiffness, its damping law's code and coefficient
+        (sim.model.contact_laws, sim.model.system.REVOLUTE_CLEARANCE), with the oil film of
+        a `lubricant` block (sim.model.lubrication) or dry (None)."""
         journal_radius = bearing_radius - clearance
-        self._rj.append((owner, (p0, p1), (bearing_radius, journal_radius, clearance, k)))
+        law, k = stiffness
+        fields = (bearing_radius, journal_radius, clearance, k, law, *damping)
+        self._rj.append((owner, (p0, p1), fields))
         self._rj_film.append(film_parameters(lubricant, journal_radius))
 
     def add_slider_clearance(
@@ -301,14 +305,18 @@ class SystemBuilder:
         gap_width: float,
         k_face: float,
         k_corner: float,
+        damping: tuple[int, float, float],
     ) -> None:
         """A translational clearance joint: rigid body `slider` (length × width) in a ground
         guide through guide[:2] at angle guide[2] of width `gap_width`; face stiffness
-        (N/m) and corner Hertz stiffness (N/m^1.5) (sim.model.clearance)."""
+        (N/m) and corner Hertz stiffness (N/m^1.5); its damping law's code and its
+        coefficients at a corner and at a face (sim.model.clearance,
+        sim.model.system.TRANSLATIONAL_CLEARANCE)."""
         o = self.body(slider, f"joints.{owner}").offset
         px, py, angle = guide
         frame = (px, py, angle, math.cos(angle), math.sin(angle))
-        self._tj.append((owner, o, (*frame, length, width, gap_width, k_face, k_corner)))
+        fields = (*frame, length, width, gap_width, k_face, k_corner, *damping)
+        self._tj.append((owner, o, fields))
 
     def add_drive(self, body: str, initial_angle: float, omega: float) -> None:
         """Prescribe the angle of rigid `body`: θ = initial_angle + omega t (rad, rad/s)."""

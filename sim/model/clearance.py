@@ -14,9 +14,9 @@ of width H through point p with direction t_g and normal n_g): each corner i is
 checked against both walls, δ_i± = ±(r_i − p)·n_g − H/2. When the two corners of
 one edge both penetrate the same wall the face law F = K_face δ̄ acts at the
 centroid of the penetrated (trapezoidal) area, δ̄ the mean depth of the edge;
-otherwise every penetrating corner gets a Lankarani–Nikravesh force with its
-own onset memory (Flores et al., Multibody Syst. Dyn. 16, 2006; the paper's
-eqs. 10–18). Friction acts along the guide at each force's point.
+otherwise every penetrating corner gets a Hertz force with the joint's damping law
+(`sim.model.contact_laws`) and its own onset memory (Flores et al., Multibody Syst.
+Dyn. 16, 2006; the paper's eqs. 10–18). Friction acts along the guide at each force's point.
 
 The gaps (one per revolute clearance, one per slider corner and wall) and their
 contact memory are numbered and laid out in `sim.model.gaps`: the in-contact flag and
@@ -28,7 +28,8 @@ tends to at the crossing.
 import numpy as np
 
 from sim.jit import kernel, kernel_inline
-from sim.model.contact import friction_force, lankarani_nikravesh
+from sim.model.contact import friction_force, johnson_elastic, normal_force
+from sim.model.contact_laws import STIFFNESS_JOHNSON
 from sim.model.gaps import (
     CORNERS_PER_SLIDER,
     GAP_REVOLUTE,
@@ -237,6 +238,18 @@ def _onset_rate(mem: np.ndarray, g: int, rate: float) -> float:
 
 
 @kernel_inline
+def revolute_elastic(sys, j: int, delta: float) -> tuple[float, float]:
+    """Elastic force (N) and stored energy (J) of revolute clearance j at penetration
+    δ > 0 (m), by its stiffness law: Hertz K δⁿ with energy K δⁿ⁺¹/(n + 1), or Johnson's
+    conformal law (`sim.model.contact.johnson_elastic`)."""
+    if sys.rj[j].stiffness_law == STIFFNESS_JOHNSON:
+        return johnson_elastic(sys.rj[j].stiffness, sys.rj[j].clearance, delta)
+    n = sys.contact.exponent
+    elastic = sys.rj[j].stiffness * delta**n
+    return elastic, elastic * delta / (n + 1.0)
+
+
+@kernel_inline
 def revolute_clearance_forces(
     sys,
     q: np.ndarray,
@@ -275,13 +288,14 @@ def revolute_clearance_forces(
             jout[j, OUT_FRICTION_FORCE] = film_t
         if delta <= 0.0:
             continue
-        k = sys.rj[j].stiffness
-        fn, fel = lankarani_nikravesh(
-            k,
+        fel, energy = revolute_elastic(sys, j, delta)
+        fn = normal_force(
+            sys.rj[j].law,
+            sys.rj[j].damping,
+            fel,
             delta,
             rate,
             _onset_rate(mem, j, rate),
-            ce.restitution,
             ce.exponent,
             ce.min_impact_speed,
         )
@@ -298,7 +312,7 @@ def revolute_clearance_forces(
         apply_point_force_rotated(sys, pj, q, fx, fy, rj * nx, rj * ny, gen, cj, sj)
         apply_point_force_rotated(sys, pb, q, -fx, -fy, rb * nx, rb * ny, gen, cb, sb)
         p_diss += (fn - fel) * rate - ft * slip
-        u_contact += fel * delta / (ce.exponent + 1.0)
+        u_contact += energy
         jout[j, OUT_NORMAL_FORCE] += fn
         jout[j, OUT_FRICTION_FORCE] += ft
         jout[j, OUT_STATE] = 1.0
@@ -343,9 +357,10 @@ def _winkler_edge(sys, j, w, q, qd, mem, gen, c, s, nx, ny):
     whole edge (a trapezoid) or, for one corner in, a triangle of length
     ℓ = L δa / (δa − δb); the elastic force k'·area acts at the area's centroid
     and derives from U = k' ∫ δ² / 2 ds. Both corners in, this is the paper's face
-    law; one corner in, its wedge limit, continuous with it. Hysteresis damping
-    as Lankarani–Nikravesh, with the rate at the force's point and the onset
-    rate of the edge's first corner. (c, s, n_x, n_y): the slider's pose (`slider_pose`).
+    law; one corner in, its wedge limit, continuous with it. Damping by the joint's law
+    (`sim.model.contact.normal_force`, exponent 1 and the face's coefficient), with the rate
+    at the force's point and the onset rate of the edge's first corner. (c, s, n_x, n_y): the
+    slider's pose (`slider_pose`).
 
     Returns (normal force N, friction N, dissipated power W, elastic energy J,
     deepest penetration m)."""
@@ -385,8 +400,16 @@ def _winkler_edge(sys, j, w, q, qd, mem, gen, c, s, nx, ny):
     else:
         onset = _onset_rate(mem, ga if da > 0.0 else gb, rate)
     ce = sys.contact
-    v_ref = max(onset, ce.min_impact_speed)
-    fn = max(0.0, f_el * (1.0 + 0.75 * (1.0 - ce.restitution**2) * rate / v_ref))
+    fn = normal_force(
+        sys.tj[j].law,
+        sys.tj[j].face_damping,
+        f_el,
+        max(da, db),
+        rate,
+        onset,
+        1.0,
+        ce.min_impact_speed,
+    )
     cx = aax + frac * (abx - aax)
     cy = aay + frac * (aby - aay)
     ft, pf = _slider_force(sys, j, q, qd, side, fn, cx, cy, gen)
@@ -463,12 +486,14 @@ def translational_clearance_forces(
                 if delta <= 0.0:
                     continue
                 deepest = max(deepest, delta)
-                fn, fel = lankarani_nikravesh(
-                    sys.tj[j].k_corner,
+                fel = sys.tj[j].k_corner * delta**ce.exponent
+                fn = normal_force(
+                    sys.tj[j].law,
+                    sys.tj[j].damping,
+                    fel,
                     delta,
                     rate,
                     _onset_rate(mem, g, rate),
-                    ce.restitution,
                     ce.exponent,
                     ce.min_impact_speed,
                 )

@@ -1,5 +1,6 @@
-"""Contact force laws: stiffness from geometry and materials, Lankarani–Nikravesh
-normal force with hysteresis damping, modified Coulomb friction.
+"""Contact force laws: stiffness from geometry and materials, the normal force of every
+damping law (`sim.model.contact_laws`), Johnson's conformal stiffness, modified Coulomb
+friction.
 
 Symbols: δ penetration (m), δ̇ its rate (m/s), δ̇⁻ the rate at the onset of the
 current contact, c_e the coefficient of restitution, K the contact stiffness,
@@ -10,6 +11,10 @@ velocity, v0 < v1 the friction tolerances of the modified Coulomb law.
 import math
 
 from sim.jit import kernel
+from sim.model.contact_laws import MEMORYLESS
+
+JOHNSON_ITERATIONS = 60
+"""Most Newton steps of Johnson's law; it converges to 1e-15 in fewer than ten."""
 
 
 def effective_modulus(e1: float, nu1: float, e2: float, nu2: float) -> float:
@@ -40,29 +45,66 @@ def face_stiffness(half_perimeter: float, e1: float, nu1: float, e2: float, nu2:
 
 
 @kernel
-def lankarani_nikravesh(
-    stiffness: float,
+def normal_force(
+    law: int,
+    damping: float,
+    elastic: float,
     delta: float,
     rate: float,
     onset_rate: float,
-    restitution: float,
     exponent: float,
     min_impact_speed: float,
-) -> tuple[float, float]:
-    """Normal force F = K δⁿ [1 + 3(1 − c_e²) δ̇ / (4 δ̇⁻)], never negative, and its
-    elastic part K δⁿ (N). Zero for δ ≤ 0.
+) -> float:
+    """Normal force (N) of damping law `law` (its code in `sim.model.contact_laws.LAWS`) on
+    the elastic force `elastic` (N) at penetration δ > 0 (m) and rate δ̇ (m/s), never negative.
 
-    Guard: δ̇⁻ is replaced by max(δ̇⁻, v_min). A resting or grazing contact has an
-    onset rate near zero, where the law's damping coefficient grows without bound;
-    below v_min (the scene's `contact.min_impact_speed`) the contact is treated as
-    an impact at v_min, which bounds the damping and leaves real impacts untouched
-    (Lankarani & Nikravesh, J. Mech. Des. 112, 1990, eq. 30)."""
-    if delta <= 0.0:
-        return 0.0, 0.0
-    elastic = stiffness * delta**exponent
+    With memory: F = F_el [1 + χ δ̇ / max(δ̇⁻, v_min)], χ = `damping` (Lankarani–Nikravesh,
+    J. Mech. Des. 112, 1990, and the laws of the same form). Guard: a resting or grazing
+    contact has an onset rate near zero, where the damping coefficient grows without bound;
+    below v_min (the scene's `contact.min_impact_speed`) the contact is treated as an impact
+    at v_min, which bounds the damping and leaves real impacts untouched.
+
+    Without memory: F = F_el + c δ^((n−1)/2) δ̇, c = `damping` (N s / m^((n+1)/2)); the onset
+    rate and v_min are unused (Tsuji, Tanaka & Ishida, Powder Technol. 71, 1992)."""
+    if MEMORYLESS[law]:
+        return max(elastic + damping * delta ** (0.5 * (exponent - 1.0)) * rate, 0.0)
     v_ref = max(onset_rate, min_impact_speed)
-    force = elastic * (1.0 + 0.75 * (1.0 - restitution * restitution) * rate / v_ref)
-    return max(force, 0.0), elastic
+    force = elastic * (1.0 + damping * rate / v_ref)
+    return max(force, 0.0)
+
+
+@kernel
+def johnson_elastic(line_stiffness: float, clearance: float, delta: float) -> tuple[float, float]:
+    """Elastic force F (N) and energy U (J) of Johnson's conformal cylinder law at
+    penetration δ > 0 (m): δ = s [ln(4ΔR/s) − 1], s = F/(π L E*), ΔR the radial clearance (m),
+    π L E* = `line_stiffness` (N/m); U = π L E* s² [ln(4ΔR/s)/2 − 3/4] (Johnson, Contact
+    Mechanics, 1985, §5.6). Solved by Newton's method kept inside its bracket. The law holds
+    up to s_lim = 4ΔR/e³, where dF/dδ = π L E*; deeper, F continues linearly with that slope."""
+    s_lim = 4.0 * clearance * math.exp(-3.0)
+    d_lim = 2.0 * s_lim
+    if delta >= d_lim:
+        u_lim = line_stiffness * s_lim * s_lim * 0.75
+        extra = delta - d_lim
+        force = line_stiffness * (s_lim + extra)
+        return force, u_lim + line_stiffness * (s_lim * extra + 0.5 * extra * extra)
+    lo = 0.0
+    hi = s_lim
+    s = 0.5 * s_lim
+    for _ in range(JOHNSON_ITERATIONS):
+        log_ratio = math.log(4.0 * clearance / s)
+        residual = s * (log_ratio - 1.0) - delta
+        if residual > 0.0:
+            hi = s
+        else:
+            lo = s
+        step = s - residual / (log_ratio - 2.0)
+        s_next = step if lo < step < hi else 0.5 * (lo + hi)
+        if abs(s_next - s) <= 1e-15 * s:
+            s = s_next
+            break
+        s = s_next
+    log_ratio = math.log(4.0 * clearance / s)
+    return line_stiffness * s, line_stiffness * s * s * (0.5 * log_ratio - 0.75)
 
 
 @kernel

@@ -51,6 +51,16 @@ def gap_owner(sys, g: int) -> tuple[int, int, int, int]:
     return GAP_SLIDER_CORNER, k // GAPS_PER_SLIDER, (k % GAPS_PER_SLIDER) // 2, k % 2
 
 
+def gap_joints(system: System) -> np.ndarray:
+    """The clearance joint of every gap, numbered as `n_clearance_joints` counts them
+    (revolute first, then translational): (gaps,) int."""
+    nr = system.rj_pts.shape[0]
+    owners = (gap_owner(system, g) for g in range(n_gaps(system)))
+    return np.array(
+        [j if kind == GAP_REVOLUTE else nr + j for kind, j, _, _ in owners], dtype=np.int64
+    )
+
+
 @kernel_inline
 def slider_gap(sys, j: int, i: int, w: int) -> int:
     """The gap of corner i of translational clearance j against wall w (`gap_owner`'s

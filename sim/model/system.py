@@ -51,9 +51,9 @@ SLIDER_LAWS = {"paper": SLIDER_LAW_PAPER, "winkler": SLIDER_LAW_WINKLER}
 
 
 class ContactLaw(NamedTuple):
-    """The contact law shared by every clearance joint (docs/model.md, sim.model.contact)."""
+    """The contact parameters shared by every clearance joint (docs/model.md,
+    sim.model.contact); each joint's damping law and coefficient are in its own data."""
 
-    restitution: float  # coefficient of restitution c_e of the Lankarani–Nikravesh law
     friction: float  # Coulomb coefficient μ
     v0: float  # m/s, modified Coulomb law: no friction below this slip speed
     v1: float  # m/s, full friction above it (linear in between)
@@ -70,7 +70,12 @@ REVOLUTE_CLEARANCE = np.dtype(
         ("bearing_radius", np.float64),  # m
         ("journal_radius", np.float64),  # m
         ("clearance", np.float64),  # radial clearance, m
-        ("stiffness", np.float64),  # Hertz stiffness, N/m^1.5
+        # Hertz stiffness K, N/m^n; under Johnson's law the line stiffness π L E*, N/m
+        ("stiffness", np.float64),
+        ("stiffness_law", np.int64),  # code in sim.model.contact_laws.STIFFNESS_LAWS
+        ("law", np.int64),  # damping law: code in sim.model.contact_laws.LAWS
+        # its coefficient: χ, or c in N s/m^((n+1)/2) for a law without memory
+        ("damping", np.float64),
     ],
     align=True,
 )
@@ -87,6 +92,9 @@ TRANSLATIONAL_CLEARANCE = np.dtype(
         ("gap_width", np.float64),  # guide width, slider width plus twice the clearance, m
         ("k_face", np.float64),  # face stiffness, N/m (force per mean penetration)
         ("k_corner", np.float64),  # corner Hertz stiffness, N/m^1.5
+        ("law", np.int64),  # damping law: code in sim.model.contact_laws.LAWS
+        ("damping", np.float64),  # its coefficient at a corner (as REVOLUTE_CLEARANCE's)
+        ("face_damping", np.float64),  # and at a face (n = 1 and k_face without memory)
     ],
     align=True,
 )

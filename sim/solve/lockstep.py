@@ -89,7 +89,7 @@ def follow(sys, work, carry, trajectory, step_ends, n_steps: int, options, buffe
                 return _fail(tally, STEP_COLLAPSE if s == OK else s, t)
             continue
         check = event_in_step(
-            sys, work, carry, mem, t, hs, y, forced, flips_at_t, hmin, buffers.rev_events, tally
+            sys, work, carry, mem, t, hs, y, forced, flips_at_t, hmin, buffers, tally
         )
         if check.status != OK:
             return _fail(tally, check.status, t)
@@ -106,7 +106,7 @@ def follow(sys, work, carry, trajectory, step_ends, n_steps: int, options, buffe
             return _fail(tally, NONFINITE, t)
         flips_at_t = 0
         if pending >= 0:
-            s = _flip_and_refresh(sys, work, carry, mem, pending, t, y, buffers.rev_events, tally)
+            s = _flip_and_refresh(sys, work, carry, mem, pending, t, y, buffers, tally)
             if s != OK:
                 return _fail(tally, s, t)
             forced = 0.0

@@ -83,6 +83,7 @@ class Buffers(NamedTuple):
     peak_slots: object  # sim.solve.record.PeakSlots: where each peak lies in `peaks`
     rev_peaks: np.ndarray  # (sections + 1, peaks) the same per revolution
     rev_events: np.ndarray  # (sections + 1,) contact events per revolution
+    gap_onsets: np.ndarray  # (gaps,) located contact onsets of each gap since the start
     means: object  # sim.solve.means.Means: the out_rows' interval means in progress
     # (capacity,) s, the end of every accepted step since tally.logged was last zeroed, for a
     # trajectory that follows this one (sim.solve.lockstep); empty: nothing is logged

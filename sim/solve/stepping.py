@@ -16,7 +16,7 @@ The loop does the rest, identically for the explicit and the implicit method:
   extension, the fast quantities' interval means over the steps (`sim.solve.means`);
   peaks over every accepted step's end and every output sample, for the whole run and
   for each revolution (the rows of `rev_peaks`, one per Poincaré section), and the
-  contact events of each revolution (`rev_events`);
+  contact events of each revolution (`rev_events`) and the onsets of each gap (`gap_onsets`);
 - a penetration or constraint drift beyond a sane bound stops the run with the
   time and the joint.
 
@@ -153,13 +153,17 @@ def _flip(sys, mem, g: int, y: np.ndarray) -> None:
 
 
 @spliced
-def _flip_and_refresh(sys, work, carry, mem, g: int, t: float, y: np.ndarray, rev_events, tally):
+def _flip_and_refresh(sys, work, carry, mem, g: int, t: float, y: np.ndarray, buffers, tally):
     """Apply the event of gap g at (t, y) and re-evaluate the derivative at the
     step's start, which the changed contact state invalidates. The event is booked to
-    the revolution after the last recorded section (sections at t are recorded first)."""
+    the revolution after the last recorded section (sections at t are recorded first), an
+    onset also to its gap."""
     _flip(sys, mem, g, y)
     tally.events += 1
+    rev_events = buffers.rev_events
     rev_events[min(tally.sections, rev_events.shape[0] - 1)] += 1
+    if mem[g, MEM_IN_CONTACT] > 0.0:
+        buffers.gap_onsets[g] += 1
     tally.evaluations += 1
     return rhs(sys, work, mem, t, y, carry.derivative)
 
@@ -184,7 +188,7 @@ class EventCheck(NamedTuple):
 
 
 @spliced
-def event_in_step(sys, work, carry, mem, t, hs, y, forced, flips_at_t, hmin, rev_events, tally):
+def event_in_step(sys, work, carry, mem, t, hs, y, forced, flips_at_t, hmin, buffers, tally):
     """The first contact event inside the step from (t, y) of length hs (s) that passed its
     error test, work holding its end (:class:`EventCheck`). None is looked for in a forced
     step (it ends on its event) nor after FLIPS_PER_GAP flips per gap at t. A gap already
@@ -198,7 +202,7 @@ def event_in_step(sys, work, carry, mem, t, hs, y, forced, flips_at_t, hmin, rev
         return EventCheck(OK, False, forced, NO_GAP, flips_at_t)
     if theta * hs > hmin:
         return EventCheck(OK, True, theta * hs, np.int64(g), flips_at_t)
-    s = _flip_and_refresh(sys, work, carry, mem, g, t, y, rev_events, tally)
+    s = _flip_and_refresh(sys, work, carry, mem, g, t, y, buffers, tally)
     return EventCheck(s, True, 0.0, NO_GAP, flips_at_t + 1)
 
 
@@ -418,7 +422,7 @@ def integrate(sys, work, carry, trajectory, t_end: float, options, buffers, tall
                 return _fail(tally, STEP_COLLAPSE if s == OK else s, t)
             continue
         check = event_in_step(
-            sys, work, carry, mem, t, hs, y, forced, flips_at_t, hmin, buffers.rev_events, tally
+            sys, work, carry, mem, t, hs, y, forced, flips_at_t, hmin, buffers, tally
         )
         if check.status != OK:
             return _fail(tally, check.status, t)
@@ -443,7 +447,7 @@ def integrate(sys, work, carry, trajectory, t_end: float, options, buffers, tall
         if not take_step(sys, work, carry, y):
             return _fail(tally, NONFINITE, t)
         if pending >= 0:
-            s = _flip_and_refresh(sys, work, carry, mem, pending, t, y, buffers.rev_events, tally)
+            s = _flip_and_refresh(sys, work, carry, mem, pending, t, y, buffers, tally)
             if s != OK:
                 return _fail(tally, s, t)
             # Resume with the step size that found the event, not the short

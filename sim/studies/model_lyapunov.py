@@ -7,15 +7,16 @@ trajectory costs what a second run costs.
 """
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
+from typing import NamedTuple
 
 import numpy as np
 import xarray as xr
 
-from sim.analysis.lyapunov import BenettinResult, Rescale, benettin
+from sim.analysis.lyapunov import BenettinResult, Rescale, benettin, interval_stretch
 from sim.model.assembly import crank_period, omega
 from sim.model.continuation import State
-from sim.model.gaps import MEM_COLUMNS, MEM_IN_CONTACT, MEM_ONSET_RATE
+from sim.model.gaps import MEM_COLUMNS, MEM_IN_CONTACT, MEM_ONSET_RATE, gap_joints
 from sim.run import Integration, Run, SimulationError, Snapshot, diagnose, prepare
 from sim.solve.state import CLOCK, Trajectory
 from sim.solve.status import OK
@@ -48,6 +49,53 @@ def _check(integ: Integration, status: int, scene_name: str, which: str) -> None
         raise SimulationError(f"scene '{scene_name}' ({which}): {diagnose(integ, status)}")
 
 
+@dataclass(eq=False)
+class OnsetLog:
+    """The contact onsets of every clearance joint in each renormalisation interval, of the
+    reference and of the perturbed trajectory, in the order the intervals ran (the transient's
+    first): one (joints,) count per interval (sim.solve.state.Buffers.gap_onsets, summed over
+    each joint's gaps)."""
+
+    joints: np.ndarray  # (gaps,) the joint of each gap (sim.model.gaps.gap_joints)
+    n_joints: int
+    reference: list[np.ndarray] = field(default_factory=list)
+    perturbed: list[np.ndarray] = field(default_factory=list)
+
+    def counted(self, integ: Integration, log: list, advance: Callable[[], np.ndarray]):
+        """``advance()``'s result, with the onsets of each joint it made ``integ`` take
+        appended to ``log``."""
+        before = integ.buffers.gap_onsets.copy()
+        out = advance()
+        new = integ.buffers.gap_onsets - before
+        log.append(np.bincount(self.joints, weights=new, minlength=self.n_joints))
+        return out
+
+
+class OnsetShares(NamedTuple):
+    """Where the model exponent's stretch is made: per clearance joint, the share of the
+    recorded stretch ln(d / d0) accumulated in the renormalisation intervals in which the joint
+    had a contact onset in either trajectory (the window after an onset is the interval it
+    falls in), beside the share of the recorded intervals those are. A joint whose stretch share
+    far exceeds its interval share makes the chaos in bursts after its impacts."""
+
+    joints: tuple[str, ...]
+    stretch: np.ndarray  # (joints,)
+    intervals: np.ndarray  # (joints,)
+
+
+def onset_shares(result: BenettinResult, propagator: "LinkagePropagator") -> OnsetShares:
+    """The :class:`OnsetShares` of an exponent computed with ``propagator``."""
+    stretch = interval_stretch(result)
+    n = stretch.size
+    log = propagator.onsets
+    hit = (np.array(log.reference[-n:]) > 0) | (np.array(log.perturbed[-n:]) > 0)
+    return OnsetShares(
+        tuple(propagator.integration.layout.clearance_joints),
+        (stretch[:, None] * hit).sum(axis=0) / stretch.sum(),
+        hit.mean(axis=0),
+    )
+
+
 @dataclass(frozen=True, eq=False)
 class LinkagePropagator:
     """The two trajectories of :func:`~sim.analysis.lyapunov.benettin` on a linkage, in lockstep.
@@ -73,11 +121,20 @@ class LinkagePropagator:
         integration: the perturbed trajectory's integration (:func:`sim.run.prepare`).
         leader: the reference's integration, prepared with a step log.
         scene_name: for error messages.
+        onsets: each joint's contact onsets per interval in both (:class:`OnsetLog`; made
+            empty when not given).
     """
 
     integration: Integration
     leader: Integration
     scene_name: str
+    onsets: OnsetLog | None = None
+
+    def __post_init__(self) -> None:
+        if self.onsets is None:
+            system = self.integration.system
+            log = OnsetLog(gap_joints(system), len(self.integration.layout.clearance_joints))
+            object.__setattr__(self, "onsets", log)
 
     def pack(self) -> np.ndarray:
         """The reference's current trajectory as one array."""
@@ -141,8 +198,12 @@ class LinkagePropagator:
         if not np.isclose(leader.t, t, rtol=0.0, atol=1e-9 * max(1.0, abs(t))):
             raise ValueError(f"the reference is at t = {leader.t} s, not at t = {t} s")
         leader.clear_step_log()
-        _check(leader, leader.advance(t + dt), self.scene_name, "Lyapunov reference")
-        return _pack(leader)
+
+        def advance() -> np.ndarray:
+            _check(leader, leader.advance(t + dt), self.scene_name, "Lyapunov reference")
+            return _pack(leader)
+
+        return self.onsets.counted(leader, self.onsets.reference, advance)
 
     def advance(self, state: np.ndarray, t: float, dt: float) -> np.ndarray:
         """The perturbed packed state at t + dt from the packed ``state`` at t (``state`` is not
@@ -161,8 +222,12 @@ class LinkagePropagator:
         # the carried step data belong to the state before its renormalisation: restored
         # without them, the integrator re-evaluates them
         integ.restore(Snapshot(trajectory, carry=None))
-        _check(integ, integ.follow(self.leader), self.scene_name, "Lyapunov trajectory")
-        return _pack(integ)
+
+        def advance() -> np.ndarray:
+            _check(integ, integ.follow(self.leader), self.scene_name, "Lyapunov trajectory")
+            return _pack(integ)
+
+        return self.onsets.counted(integ, self.onsets.perturbed, advance)
 
 
 def linkage_propagator(
@@ -311,16 +376,44 @@ def linkage_lyapunov(
         A :class:`~sim.analysis.lyapunov.BenettinResult` in seconds (``time``, ``interval``) and
         1/s (``exponent``, ``stderr``, ``running``).
     """
+    return linkage_exponent(
+        scene,
+        revolutions=revolutions,
+        transient_revolutions=transient_revolutions,
+        d0=d0,
+        interval_revolutions=interval_revolutions,
+        tolerances=tolerances,
+        ideal=ideal,
+        rigid=rigid,
+    )[0]
+
+
+def linkage_exponent(
+    scene: dict,
+    *,
+    revolutions: float,
+    transient_revolutions: float,
+    d0: float = DEFAULT_D0,
+    interval_revolutions: float = DEFAULT_INTERVAL_REVOLUTIONS,
+    tolerances: tuple[float, float] | None = None,
+    ideal: bool = False,
+    rigid: bool = False,
+) -> tuple[BenettinResult, OnsetShares]:
+    """:func:`linkage_lyapunov`'s exponent (the arguments as there) and where its stretch is
+    made: each clearance joint's share of it in the intervals of its contact onsets
+    (:class:`OnsetShares`)."""
     _check_schedule(revolutions, transient_revolutions, interval_revolutions)
     scene = with_tolerances(scene, exponent_tolerances(scene, tolerances))
-    return propagator_lyapunov(
-        linkage_propagator(scene, ideal=ideal, rigid=rigid),
+    propagator = linkage_propagator(scene, ideal=ideal, rigid=rigid)
+    result = propagator_lyapunov(
+        propagator,
         scene,
         revolutions=revolutions,
         transient_revolutions=transient_revolutions,
         d0=d0,
         interval_revolutions=interval_revolutions,
     )
+    return result, onset_shares(result, propagator)
 
 
 def _check_schedule(revolutions: float, transient_revolutions: float, interval: float) -> None:
@@ -447,8 +540,12 @@ def run_with_exponent(
 
     def advance_reference(state: np.ndarray, t: float, dt: float) -> np.ndarray:
         run.integ.clear_step_log()
-        run.advance_to(t + dt)
-        return perturbed.pack()
+
+        def advance() -> np.ndarray:
+            run.advance_to(t + dt)
+            return perturbed.pack()
+
+        return perturbed.onsets.counted(run.integ, perturbed.onsets.reference, advance)
 
     result = benettin(
         perturbed.advance,
@@ -467,10 +564,14 @@ def run_with_exponent(
     return dataset, final, result
 
 
-def model_lyapunov_dataset(result: BenettinResult, tolerances: tuple[float, float]) -> xr.Dataset:
+def model_lyapunov_dataset(
+    result: BenettinResult, tolerances: tuple[float, float], shares: OnsetShares | None = None
+) -> xr.Dataset:
     """The exponent, its standard error and its convergence curve as CF-annotated variables,
-    with the settings (d0, interval, transient, the solver's rtol and atol) as attributes."""
-    return xr.Dataset(
+    with the settings (d0, interval, transient, the solver's rtol and atol) as attributes; with
+    ``shares``, each clearance joint's share of the stretch after its contact onsets and of the
+    intervals (:class:`OnsetShares`)."""
+    dataset = xr.Dataset(
         {
             "model_lyapunov_exponent": (
                 (),
@@ -503,3 +604,25 @@ def model_lyapunov_dataset(result: BenettinResult, tolerances: tuple[float, floa
             "model_lyapunov_atol": tolerances[1],
         },
     )
+    if shares is None:
+        return dataset
+    return dataset.assign(
+        model_lyapunov_onset_stretch_share=(
+            "joint",
+            shares.stretch,
+            {
+                "units": "1",
+                "long_name": "share of the exponent's stretch in the renormalisation intervals "
+                "with a contact onset of the joint",
+            },
+        ),
+        model_lyapunov_onset_interval_share=(
+            "joint",
+            shares.intervals,
+            {
+                "units": "1",
+                "long_name": "share of the renormalisation intervals with a contact onset of "
+                "the joint",
+            },
+        ),
+    ).assign_coords(joint=list(shares.joints))

@@ -3,6 +3,7 @@
 import numpy as np
 import pytest
 
+from sim.analysis.lyapunov import interval_stretch
 from sim.model.assembly import crank_period
 from sim.model.clearance import eccentricity
 from sim.model.gaps import MEM_COLUMNS, MEM_IN_CONTACT, MEM_ONSET_RATE
@@ -13,6 +14,8 @@ from sim.studies.model_lyapunov import (
     exponent_tolerances,
     linkage_lyapunov,
     linkage_propagator,
+    onset_shares,
+    propagator_lyapunov,
     run_with_exponent,
     with_tolerances,
 )
@@ -253,3 +256,30 @@ def test_renormalisation_rescales_the_onset_rate_of_a_contact_both_share():
     assert rescaled[rate.start] == pytest.approx(0.2 + factor * 1e-3, rel=1e-12)
     assert rescaled[rate.start + MEM_COLUMNS] == 0.5
     assert rescaled[closed.start + MEM_COLUMNS] == 1.0
+
+
+def test_the_onsets_per_joint_add_up_and_their_shares_follow_the_stretch():
+    """Each trajectory's onsets per joint and interval, summed, are its located onsets: the
+    contact events are onsets and separations, and the onsets outnumber the separations by the
+    gaps in contact at the end. The shares read the stretch of the intervals with an onset."""
+    scene = load_scene("sixbar", FLAGSHIP)
+    propagator = linkage_propagator(scene, rigid=True)
+    result = propagator_lyapunov(
+        propagator, scene, revolutions=1.0, transient_revolutions=0.25, interval_revolutions=1 / 64
+    )
+    log = propagator.onsets
+    assert len(log.reference) == len(log.perturbed) == 64
+    for integ, counts in (
+        (propagator.leader, log.reference),
+        (propagator.integration, log.perturbed),
+    ):
+        onsets = int(np.sum(counts))
+        assert onsets == integ.buffers.gap_onsets.sum() > 0
+        closed = int((integ.mem[:, MEM_IN_CONTACT] > 0).sum())
+        assert onsets - (integ.count("events") - onsets) == closed
+    shares = onset_shares(result, propagator)
+    assert shares.joints == ("A", "B")
+    stretch = interval_stretch(result)
+    hit = (np.array(log.reference[-48:]) > 0) | (np.array(log.perturbed[-48:]) > 0)
+    np.testing.assert_allclose(shares.intervals, hit.mean(axis=0))
+    np.testing.assert_allclose(shares.stretch, stretch @ hit / stretch.sum())

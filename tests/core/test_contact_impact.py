@@ -1,7 +1,8 @@
 """The contact laws against analytic Hertz impact and the restitution they give.
 
 Two free bodies (steel ball, radius 10 mm, on a steel block) meet head-on; the
-engine's force law `lankarani_nikravesh` drives the relative coordinate, which
+engine's force law (`normal_force` under Lankarani–Nikravesh) drives the relative
+coordinate, which
 scipy integrates at tight tolerance. Hertz's analytic impact (Johnson, Contact
 Mechanics, 1985, §11.4) with reduced mass m* and approach speed v:
     δ_max = (5 m* v² / (4K))^(2/5),  F_max = K δ_max^1.5,
@@ -12,7 +13,8 @@ import numpy as np
 from scipy.integrate import solve_ivp
 from scipy.special import beta
 
-from sim.model.contact import corner_stiffness, effective_modulus, lankarani_nikravesh
+from sim.model.contact import corner_stiffness, effective_modulus, normal_force
+from sim.model.contact_laws import LAW_CODES, damping_coefficient
 
 E_STEEL, NU, RHO = 207e9, 0.3, 7801.0
 RADIUS = 0.01
@@ -21,6 +23,17 @@ M2 = 5.0  # block
 M_STAR = M1 * M2 / (M1 + M2)
 K = corner_stiffness(RADIUS, effective_modulus(E_STEEL, NU, E_STEEL, NU))
 V_IN = 0.5
+LN = LAW_CODES["lankarani-nikravesh"]
+
+
+def lankarani_nikravesh(delta: float, rate: float, onset: float, restitution: float):
+    """The engine's normal force (N) and its elastic part under Lankarani–Nikravesh, zero
+    apart; guard v_min = 1e-4 m/s."""
+    if delta <= 0.0:
+        return 0.0, 0.0
+    chi = damping_coefficient("lankarani-nikravesh", restitution, 1.5, 0.0, K)
+    elastic = K * delta**1.5
+    return normal_force(LN, chi, elastic, delta, rate, onset, 1.5, 1e-4), elastic
 
 
 def impact(restitution: float):
@@ -29,7 +42,7 @@ def impact(restitution: float):
 
     def force(y):
         delta, rate = y[0] - y[1], y[2] - y[3]
-        fn, _ = lankarani_nikravesh(K, delta, rate, V_IN, restitution, 1.5, 1e-4)
+        fn, _ = lankarani_nikravesh(delta, rate, V_IN, restitution)
         return fn
 
     def rhs(_t, y):
@@ -99,6 +112,6 @@ def lankarani_nikravesh_restitution(c_e: float) -> float:
 
 def test_grazing_contact_has_a_finite_force():
     # δ̇⁻ = 0 (resting or grazing contact): the guard bounds the damping term.
-    fn, fel = lankarani_nikravesh(K, 1e-6, 0.01, 0.0, 0.9, 1.5, 1e-4)
+    fn, fel = lankarani_nikravesh(1e-6, 0.01, 0.0, 0.9)
     assert np.isfinite(fn) and fn > fel > 0
-    assert fn == lankarani_nikravesh(K, 1e-6, 0.01, 1e-4, 0.9, 1.5, 1e-4)[0]
+    assert fn == lankarani_nikravesh(1e-6, 0.01, 1e-4, 0.9)[0]

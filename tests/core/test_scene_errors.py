@@ -244,6 +244,9 @@ def test_a_joint_of_another_type_replaces_the_inherited_one_whole(tmp_path, caps
         "clearance": 0.0,
         "bearing_radius": 0.015,
         "lubricant": None,
+        "law": None,
+        "stiffness_law": None,
+        "bearing_length": None,
     }
     scene.write_text("base: sixbar\njoints:\n  B: {type: revolute}\n")
     assert main(["scene", str(scene)]) == 2

@@ -10,6 +10,7 @@ import pytest
 from sim.crosscheck import contact
 from sim.model.assembly import build_system
 from sim.model.clearance import revolute_clearance_forces, translational_clearance_forces
+from sim.model.contact_laws import LAW_CODES, STIFFNESS_HERTZ
 from sim.model.gaps import (
     CORNERS_PER_SLIDER,
     MEM_IN_CONTACT,
@@ -89,7 +90,9 @@ def test_both_implementations_give_the_same_forces(sixbar):
 def test_revolute_hertz_force_closed_form():
     """A journal resting (zero rate) δ deep in its bearing: F = K δ^1.5 along −n on the
     journal, +n on the bearing, no friction at zero slip."""
-    law = contact.Law(0.9, 0.15, 1e-4, 1e-3, 1e-4, 1.5)
+    law = contact.Law(
+        LAW_CODES["lankarani-nikravesh"], 0.75 * (1 - 0.9**2), 0.15, 1e-4, 1e-3, 1e-4, 1.5
+    )
     joint = contact.RevoluteClearance(
         bearing=contact.Point(contact.NODE, 0),
         journal=contact.Point(contact.NODE, 2),
@@ -97,6 +100,7 @@ def test_revolute_hertz_force_closed_form():
         r_journal=0.0145,
         clearance=5e-4,
         stiffness=1e10,
+        stiffness_law=STIFFNESS_HERTZ,
         law=law,
     )
     delta = 1e-5

@@ -12,7 +12,7 @@ from sim.model.initial import constraint_values
 from sim.model.system import CON_CLAMP, CON_CLAMP_NODE, SLIDER_LAW_PAPER, ContactLaw
 from sim.scene import SceneError
 
-CONTACT = ContactLaw(0.9, 0.0, 1e-4, 1e-3, 1e-4, 1.5, SLIDER_LAW_PAPER)
+CONTACT = ContactLaw(0.0, 1e-4, 1e-3, 1e-4, 1.5, SLIDER_LAW_PAPER)
 G = 9.81
 # A steel cantilever: 0.5 m, 20 mm × 20 mm.
 LENGTH, SIDE, E, RHO = 0.5, 0.02, 2.1e11, 7800.0

@@ -1,9 +1,10 @@
 """The model-based largest Lyapunov exponent of one ensemble member (Benettin on the linkage,
 sim.studies.model_lyapunov) over the study's `model_lyapunov` duration, written atomically with
-the member's index, seed and perturbation. The `links` wildcard (one of the study's
-`model_lyapunov.links` and `compare`) takes it on the member's own links (`run`), on rigid
-links, or with every flexible link a modal link (`modal`, the scene's modes per link;
-docs/exponent.md, "Model convergence").
+the member's index, seed and perturbation, and each clearance joint's share of the exponent's
+stretch after its contact onsets (sim.studies.model_lyapunov.OnsetShares). The `links`
+wildcard (one of the study's `model_lyapunov.links` and `compare`) takes it on the member's own
+links (`run`), on rigid links, or with every flexible link a modal link (`modal`, the scene's
+modes per link; docs/exponent.md, "Model convergence").
 
 The member's run file holds its scene as run, perturbation included (sim.run.simulate records
 the perturbed scene), so the exponent starts exactly where the member's run started."""
@@ -13,7 +14,7 @@ from sim.studies.config import REDUCED_LINKS_METHOD
 from sim.studies.model_lyapunov import (
     DEFAULT_INTERVAL_REVOLUTIONS,
     exponent_tolerances,
-    linkage_lyapunov,
+    linkage_exponent,
     model_lyapunov_dataset,
     with_modal_links,
 )
@@ -35,7 +36,7 @@ def main(sm) -> None:
         scene["solver"]["method"] = REDUCED_LINKS_METHOD
     tolerances = settings.get("tolerances")
     rtol, atol = exponent_tolerances(scene, tolerances)
-    result = linkage_lyapunov(
+    result, shares = linkage_exponent(
         scene,
         revolutions=settings["revolutions"],
         transient_revolutions=settings["transient"],
@@ -44,7 +45,7 @@ def main(sm) -> None:
         ideal=bool(run.attrs.get("model_ideal", 0)),
         rigid=rigid,
     )
-    out = model_lyapunov_dataset(result, (rtol, atol))
+    out = model_lyapunov_dataset(result, (rtol, atol), shares)
     out.attrs.update({key: run.attrs[key] for key in MEMBER_ATTRS})
     out.attrs.update(
         {
