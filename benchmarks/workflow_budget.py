@@ -79,6 +79,8 @@ def shorten(config: dict, index: int, every: int, last: bool) -> tuple[dict, dic
     in full, run in the last pass only."""
     fraction, floor = PASSES[index]
     config = copy.deepcopy(config)
+    # each study its own copy: YAML aliases (`sweep: *clearance_sweep`) share one object
+    config["studies"] = {name: copy.deepcopy(entry) for name, entry in config["studies"].items()}
     config["quick"] = False
     validate(config, str(ROOT / "workflow/schemas/config.schema.yaml"), set_default=True)
     durations = {}

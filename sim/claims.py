@@ -250,6 +250,19 @@ def _channel_component(verdict: str, expected: str) -> str:
     return UNDECIDED if verdict == "undecided" else NOT_SUPPORTED
 
 
+def flagship_verdicts(a: xr.Dataset) -> tuple[str, dict[str, str], dict[str, int]]:
+    """Claim 5 on one chaos analysis `a` of the flagship: its verdict (each channel of
+    FLAGSHIP_VERDICTS judged as expected, and B y's Poincaré map a single point), each
+    channel's verdict and its section period."""
+    verdicts = {str(c): str(a.verdict.sel(channel=c).item()) for c in a.channel.values}
+    period = {str(c): int(a.section_period.sel(channel=c)) for c in a.channel.values}
+    components = [
+        _channel_component(verdicts.get(c, "undecided"), v) for c, v in FLAGSHIP_VERDICTS.items()
+    ]
+    components.append(SUPPORTED if period.get("B.y") == 1 else NOT_SUPPORTED)
+    return combine(components), verdicts, period
+
+
 def claim_flagship_chaos(inputs: Inputs) -> dict:
     """The verdicts of A x, A y, B x (chaotic) and B y (periodic, a single section point), each
     from its decided indicators (sim.analysis.classify): one run."""
@@ -261,13 +274,7 @@ def claim_flagship_chaos(inputs: Inputs) -> dict:
     if "flagship_analysis" not in inputs:
         return _row(claim, NOT_EVALUATED, "no chaos analysis", short=short, key="not run")
     a = _open(inputs["flagship_analysis"])
-    verdicts = {str(c): str(a.verdict.sel(channel=c).item()) for c in a.channel.values}
-    period = {str(c): int(a.section_period.sel(channel=c)) for c in a.channel.values}
-    components = [
-        _channel_component(verdicts.get(c, "undecided"), v) for c, v in FLAGSHIP_VERDICTS.items()
-    ]
-    components.append(SUPPORTED if period.get("B.y") == 1 else NOT_SUPPORTED)
-    verdict = combine(components)
+    verdict, verdicts, period = flagship_verdicts(a)
     lam = {str(c): float(a.lyapunov_exponent.sel(channel=c)) for c in a.channel.values}
     evidence = "; ".join(
         f"{c}: λ {'= ' if np.isfinite(lam[c]) else ''}"
@@ -281,7 +288,7 @@ def claim_flagship_chaos(inputs: Inputs) -> dict:
     )
     model = None
     if "flagship_model_exponents" in inputs:
-        _, (primary, *beside) = _exponents_by_case(inputs["flagship_model_exponents"])[0]
+        _, (primary, *beside) = exponents_by_case(inputs["flagship_model_exponents"])[0]
         model = _members_text(primary)
         model += "".join(f"; beside it, {_members_text(row)}" for row in beside)
         key = f"model exponent {members_summary(primary)}; {key}"
@@ -343,7 +350,7 @@ def members_summary(row: pd.Series) -> str:
     return f"{number(row.median_exponent_per_s, '1/s')} {bounds}"
 
 
-def _exponents_by_case(path) -> list[tuple[str, list[pd.Series]]]:
+def exponents_by_case(path) -> list[tuple[str, list[pd.Series]]]:
     """The rows of a model_exponent table case by case, each case's primary link model (the
     study's `model_lyapunov.links`, the one its verdicts read) first."""
     table = pd.read_csv(path)
@@ -373,7 +380,7 @@ def exponent_comparison(inputs: Inputs) -> list[dict]:
         }
         for key, path in inputs.items()
         if key.endswith("_model_exponents")
-        for case, rows in _exponents_by_case(path)
+        for case, rows in exponents_by_case(path)
     ]
 
 
@@ -432,7 +439,7 @@ def _onset_text(table: pd.DataFrame, parameter: str, values: np.ndarray) -> str:
     return onset + (f", none at {_listed(windows)}" if windows else "")
 
 
-def _growth(path) -> tuple[str, str, tuple[bool, bool], str]:
+def growth(path) -> tuple[str, str, tuple[bool, bool], str]:
     """Chaos at the low against the high end of a sweep (the lowest and the highest third of
     its points, at least one each), where it starts, B y's verdicts along it, and the key
     numbers in a few words."""
@@ -459,6 +466,14 @@ def _growth(path) -> tuple[str, str, tuple[bool, bool], str]:
     return ends, by_text, (bool(grows), by_periodic), key
 
 
+def states_verdict(states: list[bool]) -> str:
+    """A claim of several parts, each held or not: supported when all hold, not supported when
+    none does, mixed between; not evaluated without parts."""
+    if not states:
+        return NOT_EVALUATED
+    return SUPPORTED if all(states) else (NOT_SUPPORTED if not any(states) else MIXED)
+
+
 def claim_bifurcation(inputs: Inputs) -> dict:
     """Chaos against clearance and speed: the verdicts of the dense sweeps (model exponent,
     0–1 K and Poincaré period per point), low end against high end."""
@@ -470,7 +485,7 @@ def claim_bifurcation(inputs: Inputs) -> dict:
             parts.append(f"{what}: not run")
             keys.append(f"{what}: not run")
             continue
-        ends, by_text, (grows, by_periodic), key = _growth(inputs[f"{role}_table"])
+        ends, by_text, (grows, by_periodic), key = growth(inputs[f"{role}_table"])
         keys.append(f"{what}: {key}")
         states += [grows, by_periodic]
         drawn = ""
@@ -478,11 +493,7 @@ def claim_bifurcation(inputs: Inputs) -> dict:
             with xr.open_dataset(inputs[f"{role}_dataset"]) as ds:
                 drawn = f" (drawn on {ds.attrs.get('model', 'an unrecorded model')})"
         parts.append(f"{what}{drawn}: {ends}; grows: {grows}; B y {by_text}")
-    if not states:
-        verdict = NOT_EVALUATED
-    else:
-        verdict = SUPPORTED if all(states) else (NOT_SUPPORTED if not any(states) else MIXED)
-    return _row(claim, verdict, "; ".join(parts), short=short, key="; ".join(keys))
+    return _row(claim, states_verdict(states), "; ".join(parts), short=short, key="; ".join(keys))
 
 
 def claim_all_joints(inputs: Inputs) -> dict:

@@ -265,8 +265,10 @@ def sweep_base_overrides(settings: Mapping) -> dict[str, Any]:
 
 # ---------------------------------------------------------------- ensemble members
 def ensemble_size(settings: Mapping) -> int:
-    """Members per case: the study's ensemble if it has statistics on peaks, else 1."""
-    return int(settings["ensemble"]["members"]) if "peaks" in settings["analyses"] else 1
+    """Members per case: the study's ensemble if it has statistics over members, on the peaks
+    or on the chaos (the model exponent's median and interval), else 1."""
+    statistics = {"peaks", "chaos"} & set(settings["analyses"])
+    return int(settings["ensemble"]["members"]) if statistics else 1
 
 
 def member_overrides(settings: Mapping, case: str) -> dict[str, Any]:
@@ -356,6 +358,57 @@ def scene_method(scene: str) -> str:
     from sim.scene import load_scene
 
     return load_scene(scene)["solver"]["method"]
+
+
+@cache
+def _loaded_scene(scene: str) -> dict:
+    from sim.scene import load_scene
+
+    return load_scene(scene)
+
+
+def override_texts(overrides: Mapping[str, Any]) -> list[str]:
+    """Scene overrides as `sim run --set` takes them, `key=value` (None as YAML's null)."""
+    return [f"{key}={'null' if value is None else value}" for key, value in overrides.items()]
+
+
+def case_contacts(settings: Mapping) -> dict[str, dict]:
+    """How each case of a study makes contact, from its scene with the case's overrides: the
+    scene-wide damping law (`contact.law`) and the joints with an oil film
+    (`joints.<name>.lubricant`); a sweep, whose points share them, as one entry named
+    `sweep`. Joints that override the law for themselves (`joints.<name>.law`) are not
+    followed here."""
+    from sim.scene import with_overrides
+
+    def contacts(overrides: Mapping) -> dict:
+        scene = settings["scene"]
+        resolved = with_overrides(_loaded_scene(scene), override_texts(overrides), scene)
+        oiled = [name for name, joint in resolved["joints"].items() if joint.get("lubricant")]
+        return {"law": resolved["contact"]["law"], "lubricated": oiled}
+
+    if "sweep" in settings:
+        return {"sweep": contacts(sweep_base_overrides(settings))}
+    return {case: contacts(case_overrides(settings, case)) for case in case_names(settings)}
+
+
+#: the landing page's roles whose contacts its sections on the laws and the oil film name
+CONTACT_ROLES = (
+    "contact_laws",
+    "bifurcation_clearance",
+    "bifurcation_clearance_memoryless",
+    "lubrication",
+)
+
+
+def landing_contacts(config: Mapping, studies: Mapping[str, Mapping]) -> dict[str, dict]:
+    """{role: case_contacts} of the studies that config `report` names for CONTACT_ROLES and
+    that run."""
+    roles = config["report"]
+    return {
+        role: case_contacts(studies[roles[role]])
+        for role in CONTACT_ROLES
+        if roles.get(role) in studies
+    }
 
 
 def run_method(settings: Mapping, overrides: Mapping) -> str:
@@ -474,7 +527,7 @@ def check_scenes(studies: Mapping[str, Mapping]) -> None:
     loaded: dict[str, dict] = {}
     turned: set[str] = set()
     for name, case, scene, overrides in planned_scenes(studies):
-        texts = [f"{key}={value}" for key, value in overrides.items()]
+        texts = override_texts(overrides)
         try:
             if scene not in loaded:
                 loaded[scene] = load_scene(scene)
@@ -603,45 +656,61 @@ def study_files(name: str, settings: Mapping, crosscheck: bool) -> list[tuple[st
 class LandingInput(NamedTuple):
     """One named input of the landing page (sim.claims reads it as `<role>_<name>`): the
     file (workflow/rules/paths.smk) of the study that config `report.<role>` names, if
-    that study lists `analysis` (None: any study); of its first case if `per_case`."""
+    that study lists `analysis` (None: any study); `cases` says whose: FIRST_CASE's, EVERY_CASE's
+    (a list, in the study's order of cases) or the study's own (STUDY_FILE)."""
 
     role: str
     analysis: str | None
     name: str
     file: str
-    per_case: bool
+    cases: str
 
+
+STUDY_FILE, FIRST_CASE, EVERY_CASE = "study", "first", "every"
 
 #: every input of the landing page but the experiment's recording metadata, in input order:
-#: the roles that share their inputs, then (analysis, name, file, per case) of each input;
-#: sim.claims judges each claim on these names
+#: the roles that share their inputs, then (analysis, name, file, cases) of each input;
+#: sim.claims and sim.law_section judge the claims on these names
 _LANDING_GROUPS = (
     (
         ("flagship", "all_joints"),
         (
-            (None, "run", "run", True),
-            (None, "ideal", "ideal", True),
-            ("chaos", "analysis", "analysis", True),
-            ("chaos", "model_exponents", "model_exponent_csv", False),
+            (None, "run", "run", FIRST_CASE),
+            (None, "ideal", "ideal", FIRST_CASE),
+            ("chaos", "analysis", "analysis", FIRST_CASE),
+            ("chaos", "model_exponents", "model_exponent_csv", STUDY_FILE),
         ),
     ),
     (
         ("clearance_size", "speed"),
         (
-            ("peaks", "peaks", "peaks_csv", False),
-            ("peaks", "revolutions", "revolutions", False),
-            ("chaos", "model_exponents", "model_exponent_csv", False),
+            ("peaks", "peaks", "peaks_csv", STUDY_FILE),
+            ("peaks", "revolutions", "revolutions", STUDY_FILE),
+            ("chaos", "model_exponents", "model_exponent_csv", STUDY_FILE),
         ),
     ),
     (
-        ("bifurcation_clearance", "bifurcation_speed"),
         (
-            ("bifurcation", "table", "bifurcation_lyapunov_csv", False),
-            ("bifurcation", "dataset", "bifurcation", False),
+            "bifurcation_clearance",
+            "bifurcation_speed",
+            "bifurcation_clearance_memoryless",
+            "lubrication_viscosity",
+        ),
+        (
+            ("bifurcation", "table", "bifurcation_lyapunov_csv", STUDY_FILE),
+            ("bifurcation", "dataset", "bifurcation", STUDY_FILE),
         ),
     ),
-    (("cross_check",), (("crosscheck", "summary", "crosscheck_summary", False),)),
-    (("experiment",), (("experiment", "comparison", "comparison_json", True),)),
+    (
+        ("contact_laws", "lubrication"),
+        (
+            ("chaos", "analyses", "analysis", EVERY_CASE),
+            ("chaos", "model_exponents", "model_exponent_csv", STUDY_FILE),
+            ("peaks", "revolutions", "revolutions", STUDY_FILE),
+        ),
+    ),
+    (("cross_check",), (("crosscheck", "summary", "crosscheck_summary", STUDY_FILE),)),
+    (("experiment",), (("experiment", "comparison", "comparison_json", FIRST_CASE),)),
 )
 LANDING_INPUTS = tuple(
     LandingInput(role, *item)
@@ -651,9 +720,12 @@ LANDING_INPUTS = tuple(
 )
 
 
-def landing_inputs(config: Mapping, studies: Mapping[str, Mapping]) -> list[tuple[str, str, dict]]:
+def landing_inputs(
+    config: Mapping, studies: Mapping[str, Mapping]
+) -> list[tuple[str, str, dict | list[dict]]]:
     """(input name, file name, wildcards) of every landing input that the enabled
-    `studies` (resolved settings) provide."""
+    `studies` (resolved settings) provide; the wildcards of an EVERY_CASE input are a list,
+    one per case."""
     roles = config["report"]
     out = []
     for item in LANDING_INPUTS:
@@ -663,8 +735,7 @@ def landing_inputs(config: Mapping, studies: Mapping[str, Mapping]) -> list[tupl
         settings = studies[name]
         if item.analysis is not None and item.analysis not in settings["analyses"]:
             continue
-        wildcards = {"study": name}
-        if item.per_case:
-            wildcards["case"] = case_names(settings)[0]
-        out.append((f"{item.role}_{item.name}", item.file, wildcards))
+        cases = [{"study": name, "case": case} for case in case_names(settings)]
+        wildcards = {STUDY_FILE: {"study": name}, FIRST_CASE: cases[0], EVERY_CASE: cases}
+        out.append((f"{item.role}_{item.name}", item.file, wildcards[item.cases]))
     return out

@@ -66,7 +66,7 @@ def as_texts(function, *names):
     """An adapter giving the overrides of resolver `function` (as `resolved`) as `key=value`
     texts, as `sim run --set` takes them."""
     overrides = resolved(function, *names)
-    return lambda wildcards: [f"{key}={value}" for key, value in overrides(wildcards).items()]
+    return lambda wildcards: resolver.override_texts(overrides(wildcards))
 
 
 def as_sets(function, *names):
@@ -182,11 +182,21 @@ def landing_inputs(wildcards):
     """Named inputs of the landing page (sim.studies.config.LANDING_INPUTS) and the
     experiment's recording metadata."""
     out = {
-        key: path(file, **names) for key, file, names in resolver.landing_inputs(config, SETTINGS)
+        key: (
+            [path(file, **case) for case in names]
+            if isinstance(names, list)
+            else path(file, **names)
+        )
+        for key, file, names in resolver.landing_inputs(config, SETTINGS)
     }
     if "experiment_comparison" in out:
         out["experiment_meta"] = landing_recording(wildcards)["meta"]
     return out
+
+
+def landing_contacts(wildcards):
+    """The contact law and oiled joints of each case the landing page's sections read."""
+    return resolver.landing_contacts(config, SETTINGS)
 
 
 def landing_recording(wildcards):

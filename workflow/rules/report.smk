@@ -57,6 +57,7 @@ rule landing:
         "../envs/sim.yaml"
     params:
         recording=landing_recording,
+        contacts=landing_contacts,
         statistics=bootstrap_settings,
         ensemble=DEFAULTS.get("ensemble", {}),
     script:
