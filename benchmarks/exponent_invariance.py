@@ -10,7 +10,8 @@ their total that the top 5 % of intervals carry). The exponent belongs to the dy
 setting moves it beyond its standard error.
 
 Points: `flagship` (A and B 0.5 mm, 150 rpm), `slow` (0.2 mm, 30 rpm), `small` (0.1 mm,
-150 rpm). Links: `rigid`, `modal-B-A` (B bending and A axial modes per rod; generalized-alpha
+150 rpm), `lubricated` (the flagship with joint A's oil film, scene sixbar-lubricated).
+Links: `rigid`, `modal-B-A` (B bending and A axial modes per rod; generalized-alpha
 when A > 0, as the axial modes need it), `beam-E` (E ANCF elements per rod, generalized-alpha);
 `:ga` after any of them forces generalized-alpha (e.g. `modal-1-0:ga`, to tell the method's
 share of a difference from the link model's).
@@ -31,9 +32,16 @@ from sim.scene import load_scene
 from sim.studies.model_lyapunov import linkage_lyapunov
 
 POINTS = {
-    "flagship": ["joints.A.clearance=0.5e-3", "joints.B.clearance=0.5e-3"],
-    "slow": ["joints.A.clearance=0.2e-3", "joints.B.clearance=0.2e-3", "drive.speed_rpm=30"],
-    "small": ["joints.A.clearance=0.1e-3", "joints.B.clearance=0.1e-3"],
+    "flagship": ("sixbar", ["joints.A.clearance=0.5e-3", "joints.B.clearance=0.5e-3"]),
+    "slow": (
+        "sixbar",
+        ["joints.A.clearance=0.2e-3", "joints.B.clearance=0.2e-3", "drive.speed_rpm=30"],
+    ),
+    "small": ("sixbar", ["joints.A.clearance=0.1e-3", "joints.B.clearance=0.1e-3"]),
+    "lubricated": (
+        "sixbar-lubricated",
+        ["joints.A.clearance=0.5e-3", "joints.B.clearance=0.5e-3"],
+    ),
 }
 RODS = ("rod2", "rod3", "rod4")
 
@@ -75,7 +83,8 @@ def stretch(result: BenettinResult) -> dict:
 
 def main() -> None:
     point, links, revolutions, transient, *settings = sys.argv[1:]
-    scene = load_scene("sixbar", POINTS[point] + link_overrides(links))
+    name, overrides = POINTS[point]
+    scene = load_scene(name, overrides + link_overrides(links))
     for setting in settings:
         rtol, interval, d0 = setting.split(":")
         cpu = time.process_time()
