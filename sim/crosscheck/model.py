@@ -42,7 +42,7 @@ from sim.crosscheck import contact
 from sim.crosscheck.recorder import Recorder
 from sim.model.assembly import Layout, body_mass_properties, omega
 from sim.model.beams import midpoint_shape
-from sim.model.contact_laws import LAW_CODES, STIFFNESS_HERTZ
+from sim.model.contact_laws import LAWS, STIFFNESS_HERTZ
 from sim.model.system import (
     POINT_GROUND,
     POINT_RIGID,
@@ -327,10 +327,10 @@ class _Builder:
 
     def _sphere_contact(self, name: str, joint: dict, j: int):
         """Revolute clearance j as Exudyn's ObjectContactSphereSphere (see the module
-        docstring); returns the sensor of its contact force on the bearing (N)."""
+        docstring); returns the sensor of its contact force (Exudyn's `Force`, N)."""
         f = self.system.rj[j]
         c = self.system.contact
-        law = next(n for n, code in LAW_CODES.items() if code == int(f["law"]))
+        law = LAWS[int(f["law"])].name
         checks = {
             "law": (law in EXUDYN_IMPACT_MODELS, f"one of {', '.join(EXUDYN_IMPACT_MODELS)}"),
             "stiffness_law": (int(f["stiffness_law"]) == STIFFNESS_HERTZ, "hertz"),
@@ -338,8 +338,7 @@ class _Builder:
         for key, (ok, accepted) in checks.items():
             if not ok:
                 raise CrossCheckError(
-                    f"joints.{name}.{key}: Exudyn's own contact (exudyn.builtin_contact) "
-                    f"needs {accepted}"
+                    f"joints.{name}.{key}: Exudyn's own contact (builtin_contact) needs {accepted}"
                 )
         if c.friction != 0.0:
             raise CrossCheckError(
@@ -361,6 +360,7 @@ class _Builder:
                 )
             )
         bearing, journal = markers
+        # its history: gap (m; starting apart), tangential speed, impact speed, plastic overlap
         data = self.mbs.AddNode(
             item.NodeGenericData(numberOfDataCoordinates=4, initialCoordinates=[1.0, 0, 0, 0])
         )
