@@ -13,6 +13,9 @@ and the driving torque (the paper's comparison with ADAMS). Three kinds of measu
   |acceleration| and |torque| and the distribution of the Poincaré points of each clearance
   joint (eccentricity at each crank revolution), by mean, standard deviation, the two-sample
   Kolmogorov–Smirnov statistic and the Wasserstein distance over the pooled spread.
+- `first_impact` / `impact`: one contact of a revolute clearance joint (onset time, onset rate,
+  peak normal force, deepest penetration, rebound) in each run and their differences, for the
+  contact law compared with Exudyn's own contact object (sim.crosscheck.model).
 - `elastic_law_difference`: what our beam law (Green strain, constant bending stiffness) and
   Exudyn's (|r'| − 1 strain, material curvature) change in the elastic forces at given states.
 """
@@ -151,6 +154,85 @@ def statistical(ours: xr.Dataset, theirs: xr.Dataset, transient: int = 0) -> dic
             y = theirs.section_eccentricity.sel(joint=joint, axis=axis).values[transient + 1 :]
             out["poincare"][f"{joint} {axis}"] = _distribution(x, y)
     return out
+
+
+def _crossing(t: np.ndarray, x: np.ndarray, i: int) -> float:
+    """Time (s) where x crosses 0 between samples i − 1 and i, linearly interpolated."""
+    return float(t[i - 1] - x[i - 1] * (t[i] - t[i - 1]) / (x[i] - x[i - 1]))
+
+
+def _at(t: np.ndarray, x: np.ndarray, time: float) -> float:
+    return float(np.interp(time, t, x))
+
+
+def _vertex(t: np.ndarray, x: np.ndarray, i: int) -> tuple[float, float]:
+    """(time, value) of the parabola through samples i − 1, i, i + 1 at its vertex (the peak
+    between samples; the sample itself at the ends)."""
+    if i == 0 or i == x.size - 1:
+        return float(t[i]), float(x[i])
+    a, b, c = x[i - 1], x[i], x[i + 1]
+    curvature = a - 2.0 * b + c
+    shift = 0.5 * (a - c) / curvature if curvature != 0.0 else 0.0
+    h = t[i + 1] - t[i]
+    return float(t[i] + shift * h), float(b - 0.25 * (a - c) * shift)
+
+
+def first_impact(ds: xr.Dataset, joint: str) -> dict[str, float]:
+    """The first contact of revolute clearance `joint` (clearance c from the run's scene):
+    penetration δ = |e| − c and its rate δ̇ = ė·e/|e| from the sampled eccentricity e;
+    onset t⁻ and separation t⁺ where δ crosses 0 (linear between samples), the onset rate
+    δ̇⁻ and separation rate δ̇⁺ there, the rebound −δ̇⁺/δ̇⁻ (the effective restitution in the
+    mechanism), the peak normal force F_max (N) and deepest penetration δ_max (m) (vertices of
+    the parabolas through the largest sample and its neighbours) and the time of F_max (s).
+    Samples must resolve the contact (tens per contact)."""
+    clearance = float(scene_of(ds)["joints"][joint]["clearance"])
+    t = ds.time.values
+    e = ds.eccentricity.sel(joint=joint).values
+    de = ds.eccentricity_rate.sel(joint=joint).values
+    length = np.hypot(e[:, 0], e[:, 1])
+    delta = length - clearance
+    rate = np.divide(np.sum(e * de, axis=1), length, out=np.zeros_like(length), where=length > 0)
+    inside = np.flatnonzero(delta > 0.0)
+    if inside.size == 0 or inside[0] == 0:
+        raise ValueError(f"joint {joint}: no contact onset within the run's samples")
+    first = inside[0]
+    after = np.flatnonzero(delta[first:] <= 0.0)
+    if after.size == 0:
+        raise ValueError(f"joint {joint}: the first contact does not end within the run")
+    last = first + after[0]
+    onset, separation = _crossing(t, delta, first), _crossing(t, delta, last)
+    window = slice(first - 1, last + 1)
+    force = ds.normal_force.sel(joint=joint).values[window]
+    peak_time, peak_force = _vertex(t[window], force, int(np.argmax(force)))
+    _, deepest = _vertex(t[window], delta[window], int(np.argmax(delta[window])))
+    onset_rate, separation_rate = _at(t, rate, onset), _at(t, rate, separation)
+    return {
+        "onset_s": onset,
+        "separation_s": separation,
+        "onset_rate": onset_rate,
+        "separation_rate": separation_rate,
+        "rebound": -separation_rate / onset_rate,
+        "peak_force": peak_force,
+        "peak_force_s": peak_time,
+        "max_penetration": deepest,
+    }
+
+
+def impact(ours: xr.Dataset, theirs: xr.Dataset, joint: str) -> dict:
+    """`first_impact` of `joint` in both runs and their differences: onset, separation and
+    peak times (s), relative differences of the onset rate, rebound, peak force and
+    deepest penetration (Exudyn's over ours, minus 1)."""
+    a, b = first_impact(ours, joint), first_impact(theirs, joint)
+    relative = ("onset_rate", "rebound", "peak_force", "max_penetration")
+    return {
+        "joint": joint,
+        "ours": a,
+        "exudyn": b,
+        "difference": {
+            **{k: b[k] - a[k] for k in ("onset_s", "separation_s", "peak_force_s")},
+            **{k: b[k] / a[k] - 1.0 for k in relative},
+        },
+    }
 
 
 def _hermite_derivatives(xi: np.ndarray, length: float) -> tuple[np.ndarray, np.ndarray]:

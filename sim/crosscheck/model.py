@@ -23,6 +23,12 @@ state y = (q, q̇, ...), so both codes start from the same coordinates. Exudyn's
   position and velocity of two marker points; the contact law needs each body's own angular
   velocity (slip of the contact surfaces) and moments about the pin centres, which only a
   force on the bodies' coordinates carries. A pre-step function keeps the onset memories.
+- or, with `builtin_contact`, a revolute clearance between rigid bodies (or ground) as Exudyn's
+  own ObjectContactSphereSphere: the journal a sphere of radius R_J in the hollow sphere
+  (isHollowSphere1) of radius R_B, so that in planar motion its overlap is δ = |e| − c, with
+  the joint's stiffness K, exponent n, restitution e and v_min, its damping law Exudyn's
+  `impactModel` of the same formula (`EXUDYN_IMPACT_MODELS`), friction 0. Nothing of ours
+  computes that contact force: the contact law itself is compared.
 """
 
 import math
@@ -36,6 +42,7 @@ from sim.crosscheck import contact
 from sim.crosscheck.recorder import Recorder
 from sim.model.assembly import Layout, body_mass_properties, omega
 from sim.model.beams import midpoint_shape
+from sim.model.contact_laws import LAWS, STIFFNESS_HERTZ
 from sim.model.system import (
     POINT_GROUND,
     POINT_RIGID,
@@ -44,6 +51,14 @@ from sim.model.system import (
 )
 
 VARIABLE = exu.OutputVariableType
+
+#: Our damping laws (`sim.model.contact_laws.LAWS`) that Exudyn's ObjectContactSphereSphere has,
+#: by its `impactModel` (Exudyn documentation 1.13, ObjectContactSphereSphere): 1 Hunt–Crossley,
+#: λ = (K/δ̇⁻)(3/2)(e − 1); 2 Carvalho–Martins above e = 1/3, Gonthier et al. below,
+#: λ = (K/δ̇⁻)(3/2)(e − 1)(11 − e)/(1 + 9e), resp. (K/δ̇⁻)(e² − 1)/e; F = K δⁿ − λ δⁿ δ̇ with
+#: δ̇⁻ = max(v_min, the rate at the end of the first step in contact). Same χ as ours;
+#: Exudyn does not clip the force at 0 (tension needs δ̇ < −δ̇⁻/χ, never in a free impact).
+EXUDYN_IMPACT_MODELS: dict[str, int] = {"hunt-crossley": 1, "gonthier-carvalho": 2}
 
 
 class CrossCheckError(ValueError):
@@ -85,6 +100,7 @@ class ExudynModel:
     drive: object
     joint_points: dict[str, tuple[PointSensors, PointSensors]]  # clearance joint → (B, J)
     contacts: list[Contact]
+    builtin: dict[str, object]  # joint with Exudyn's own contact → its contact force sensor
     # Running peaks over all steps (|acceleration| per body and axis, then |torque|), from the
     # coordinate accelerations: Exudyn numbers its coordinates node by node, as we do.
     peak_idx: np.ndarray  # (body, axis, 4) coordinates combined into each reference point
@@ -97,8 +113,12 @@ class ExudynModel:
 class _Builder:
     """Adds the scene's items to an Exudyn MainSystem (one use)."""
 
-    def __init__(self, scene: dict, system: System, layout: Layout, y: np.ndarray):
+    def __init__(
+        self, scene: dict, system: System, layout: Layout, y: np.ndarray, builtin_contact: bool
+    ):
         self.scene, self.system, self.layout = scene, system, layout
+        self.builtin_contact = builtin_contact
+        self.builtin: dict[str, object] = {}  # clearance joint → contact force sensor
         self.q0, self.qd0 = y[: system.n], y[system.n : 2 * system.n]
         self.container = exu.SystemContainer()
         self.mbs = self.container.AddSystem()
@@ -237,7 +257,10 @@ class _Builder:
                         raise CrossCheckError(
                             f"joints.{name}.lubricant: the Exudyn cross-check has no oil film"
                         )
-                    contacts.append(self._revolute_clearance(joint, j))
+                    if self.builtin_contact:
+                        self.builtin[name] = self._sphere_contact(name, joint, j)
+                    else:
+                        contacts.append(self._revolute_clearance(joint, j))
                     joint_points[name] = tuple(
                         self._point_sensors(b, p)
                         for b, p in zip(joint["bodies"], joint["points"], strict=True)
@@ -306,6 +329,64 @@ class _Builder:
         law = contact.RevoluteClearance.from_system(self.system, j, bearing, journal)
         return self._generic(law, nodes, reference)
 
+    def _sphere_contact(self, name: str, joint: dict, j: int):
+        """Revolute clearance j as Exudyn's ObjectContactSphereSphere (see the module
+        docstring); returns the sensor of its contact force (Exudyn's `Force`, N)."""
+        f = self.system.rj[j]
+        c = self.system.contact
+        law = LAWS[int(f["law"])].name
+        checks = {
+            "law": (law in EXUDYN_IMPACT_MODELS, f"one of {', '.join(EXUDYN_IMPACT_MODELS)}"),
+            "stiffness_law": (int(f["stiffness_law"]) == STIFFNESS_HERTZ, "hertz"),
+        }
+        for key, (ok, accepted) in checks.items():
+            if not ok:
+                raise CrossCheckError(
+                    f"joints.{name}.{key}: Exudyn's own contact (builtin_contact) needs {accepted}"
+                )
+        if c.friction != 0.0:
+            raise CrossCheckError(
+                f"contact.friction = {c.friction}: Exudyn's own contact is compared without "
+                "friction (its friction law is not ours); set it to 0"
+            )
+        markers = []
+        for body, pname in zip(joint["bodies"], joint["points"], strict=True):
+            kind, owner, u = self._point(body, pname)
+            if kind == contact.NODE:
+                raise CrossCheckError(
+                    f"joints.{name}: Exudyn's own contact needs rigid bodies (or ground), "
+                    f"'{body}' is a beam"
+                )
+            target = self.ground if kind == contact.GROUND else owner
+            markers.append(
+                self.mbs.AddMarker(
+                    item.MarkerBodyRigid(bodyNumber=target, localPosition=[u[0], u[1], 0.0])
+                )
+            )
+        bearing, journal = markers
+        # its history: gap (m; starting apart), tangential speed, impact speed, plastic overlap
+        data = self.mbs.AddNode(
+            item.NodeGenericData(numberOfDataCoordinates=4, initialCoordinates=[1.0, 0, 0, 0])
+        )
+        obj = self.mbs.AddObject(
+            item.ObjectContactSphereSphere(
+                markerNumbers=[journal, bearing],
+                nodeNumber=data,
+                spheresRadii=[float(f["journal_radius"]), float(f["bearing_radius"])],
+                isHollowSphere1=True,
+                contactStiffness=float(f["stiffness"]),
+                contactStiffnessExponent=c.exponent,
+                restitutionCoefficient=float(self.scene["contact"]["restitution"]),
+                minimumImpactVelocity=c.min_impact_speed,
+                impactModel=EXUDYN_IMPACT_MODELS[law],
+            )
+        )
+        force = item.SensorObject(
+            objectNumber=obj, outputVariableType=VARIABLE.Force, writeToFile=False
+        )
+        self.sensors.append(self.mbs.AddSensor(force))
+        return self.sensors[-1]
+
     def _slider_clearance(self, joint, j) -> Contact:
         if self.system.contact.slider_law != SLIDER_LAW_WINKLER:
             raise CrossCheckError(
@@ -372,9 +453,12 @@ class _Builder:
         return points, angles
 
 
-def build_model(scene: dict, system: System, layout: Layout, y: np.ndarray) -> ExudynModel:
-    """The Exudyn model of `scene` as compiled into `system` / `layout`, started from y."""
-    builder = _Builder(scene, system, layout, y)
+def build_model(
+    scene: dict, system: System, layout: Layout, y: np.ndarray, builtin_contact: bool = False
+) -> ExudynModel:
+    """The Exudyn model of `scene` as compiled into `system` / `layout`, started from y; with
+    `builtin_contact`, its revolute clearances as Exudyn's own contact (module docstring)."""
+    builder = _Builder(scene, system, layout, y, builtin_contact)
     builder.bodies()
     contacts, joint_points = builder.joints()
     constraint, torque = builder.drive()
@@ -398,6 +482,7 @@ def build_model(scene: dict, system: System, layout: Layout, y: np.ndarray) -> E
         drive=torque,
         joint_points=joint_points,
         contacts=contacts,
+        builtin=builder.builtin,
         peak_idx=system.ref_idx[:, None, :] + np.arange(2)[None, :, None],
         peak_coef=system.ref_coef[:, None, :],
         drive_row=int(data.GetObjectLTGAE(constraint)[0]),

@@ -12,9 +12,10 @@ class Recorder:
     Exudyn's own sensor output is written when the summed step sizes reach the next write time
     to within 1e-10 s; over 1e6 steps their round-off exceeds that and a sample slips by one
     step. Here a step that starts at an output time (to within 1e-6 of a step) is sampled there;
-    one that passes over it (after Exudyn reduced a step that did not converge) is sampled at
-    its start and end and interpolated linearly, and counted in `interpolated`. `times` (s) are
-    the output times, `step` (s) Exudyn's nominal step."""
+    one that passes over it (after Exudyn reduced a step that did not converge, or one that
+    met a contact onset) is sampled at its start and end and interpolated linearly, and
+    counted in `interpolated`; a step retried from the same start replaces its first try.
+    `times` (s) are the output times, `step` (s) Exudyn's nominal step."""
 
     sensors: list
     times: np.ndarray = field(default_factory=lambda: np.zeros(0))
@@ -30,6 +31,8 @@ class Recorder:
         """At the start of a step from `start` to `end` (s), with the current state there."""
         tolerance = 1e-6 * self.step
         k = len(self.values)
+        if self.pending is not None and abs(start - self.pending[0]) <= tolerance:
+            self.pending = None  # the same step again, reduced (its first try was rejected)
         if self.pending is not None and k < self.times.size:
             t0, before = self.pending
             after = self._read(mbs)

@@ -4,7 +4,9 @@
 `prepare(...).y`), same output times and Poincaré sections, and a Dataset with the variables
 position, velocity, acceleration (time, body, axis), angle, crank_angle, drive_torque,
 eccentricity and eccentricity_rate (time, joint, axis), section_* (revolution, ...) and
-peak_acceleration, peak_drive_torque. Energies and contact forces are not recorded.
+peak_acceleration, peak_drive_torque. Energies are not recorded, nor contact forces, except
+`normal_force` (time, joint) of the joints given Exudyn's own contact (`builtin_contact`; NaN
+for the others).
 
 Exudyn integrates with fixed steps, an integer number per output sample, so that its sensors
 are read exactly at our output times (`sim.crosscheck.model.Recorder`; where Exudyn halves a
@@ -40,12 +42,19 @@ SOLVERS = ("trapezoidal_index2", "generalized_alpha")
 @dataclass(frozen=True)
 class ExudynSettings:
     """Exudyn's time integration: method (SOLVERS), steps per output sample (the step is
-    the output interval over this), ρ∞ of generalized-α and Newton's relative tolerance."""
+    the output interval over this), ρ∞ of generalized-α and Newton's relative tolerance; and
+    whether revolute clearances take Exudyn's own contact object (`builtin_contact`,
+    sim.crosscheck.model) rather than our laws through a user function, and the error goal of
+    Exudyn's iteration on that contact's state (`contact_tolerance`: |gap| K, K the contact
+    stiffness; Exudyn's default 1 asks |gap| < 1e-11 m of a K = 1e11 N/m^1.5 joint, which its
+    step reduction at a contact onset cannot reach above its 1e-8 s minimum step)."""
 
     solver: str = "trapezoidal_index2"
     steps_per_sample: int = 10
     spectral_radius: float = 0.9
     newton_relative_tolerance: float = 1e-10
+    builtin_contact: bool = False
+    contact_tolerance: float = 1.0
 
     def __post_init__(self) -> None:
         checks = {
@@ -59,6 +68,8 @@ class ExudynSettings:
                 0.0 < self.newton_relative_tolerance < 1e-2,
                 "in (0, 1e-2)",
             ),
+            "builtin_contact": (isinstance(self.builtin_contact, bool), "true or false"),
+            "contact_tolerance": (self.contact_tolerance > 0.0, "> 0"),
         }
         for key, (ok, accepted) in checks.items():
             if not ok:
@@ -72,6 +83,7 @@ def _simulation_settings(settings: ExudynSettings, steps: int, t_end: float):
     ti.endTime = t_end
     ti.verboseMode = 0
     ti.newton.relativeTolerance = settings.newton_relative_tolerance
+    ti.discontinuous.iterationTolerance = settings.contact_tolerance
     alpha = ti.generalizedAlpha
     if settings.solver == "trapezoidal_index2":
         alpha.useIndex2Constraints = True
@@ -129,7 +141,7 @@ def simulate_exudyn(
     Exudyn model does not build and exudyn.SolverError when Exudyn's solver stops."""
     settings = settings or ExudynSettings()
     start = prepare(scene, ideal=ideal, rigid=rigid, revolutions=revolutions)
-    model = build_model(scene, start.system, start.layout, start.y)
+    model = build_model(scene, start.system, start.layout, start.y, settings.builtin_contact)
     out_t = start.out_t
     sample = out_t[1] - out_t[0]
     steps = (out_t.size - 1) * settings.steps_per_sample
@@ -155,6 +167,7 @@ def simulate_exudyn(
     angle = np.stack([_angle(model, b) for b in bodies], axis=1)
     torque = -_stored(model, model.drive, 0)
     ecc, ecc_rate = _eccentricities(model, scene, series["Position"], series["Velocity"])
+    normal = _normal_forces(model, ecc)
     sections = np.rint(start.sec_t / sample).astype(int)
     drive_body = bodies.index(scene["drive"]["body"])
     nb = len(bodies)
@@ -172,6 +185,7 @@ def simulate_exudyn(
             "drive_torque": ("time", torque),
             "eccentricity": (("time", "joint", "axis"), ecc),
             "eccentricity_rate": (("time", "joint", "axis"), ecc_rate),
+            "normal_force": (("time", "joint"), normal),
             "section_position": (("revolution", "body", "axis"), series["Position"][sections]),
             "section_velocity": (("revolution", "body", "axis"), series["Velocity"][sections]),
             "section_eccentricity": (("revolution", "joint", "axis"), ecc[sections]),
@@ -213,6 +227,22 @@ def simulate_exudyn(
         simulated_time_s=t_end,
     )
     return ds
+
+
+def _normal_forces(model: ExudynModel, ecc: np.ndarray) -> np.ndarray:
+    """Normal contact force (N, time × joint) of each joint with Exudyn's own contact: its
+    force on the bearing against e/|e| (Exudyn's sensor `Force` of the contact, which, for a
+    hollow sphere 1, is the force on marker 0, the journal: measured on a single impact), positive
+    pressing the surfaces together; NaN for the
+    other joints, whose force Exudyn does not compute itself."""
+    out = np.full(ecc.shape[:2], np.nan)
+    for name, sensor in model.builtin.items():
+        j = model.layout.clearance_joints.index(name)
+        e = ecc[:, j]
+        along = -np.sum(_stored(model, sensor, slice(0, 2)) * e, axis=1)
+        length = np.hypot(e[:, 0], e[:, 1])
+        out[:, j] = np.divide(along, length, out=np.zeros_like(along), where=length > 0.0)
+    return out
 
 
 def _angle(model: ExudynModel, body: str) -> np.ndarray:

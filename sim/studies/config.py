@@ -635,7 +635,8 @@ def has_clearance(settings: Mapping, case: str) -> bool:
 
 def study_files(name: str, settings: Mapping, crosscheck: bool) -> list[tuple[str, dict]]:
     """(file name, wildcards) of every final file of study `name`; `crosscheck`: whether
-    the cross-check's case files are made (Exudyn importable)."""
+    the cross-check's case files are made (Exudyn importable). A clearance case under Exudyn's
+    own contact law (`builtin_contact`) is compared impact by impact, without statistics."""
     cases = case_names(settings)
     out = []
     for analysis in settings["analyses"]:
@@ -648,6 +649,7 @@ def study_files(name: str, settings: Mapping, crosscheck: bool) -> list[tuple[st
             ("crosscheck_statistics", {"study": name, "case": case})
             for case in cases
             if has_clearance(settings, case)
+            and not exudyn_settings(settings, case).get("builtin_contact", False)
         ]
     return out
 

@@ -49,3 +49,22 @@ def test_a_halved_step_off_the_grid_is_interpolated():
     assert recorder.interpolated == 2  # 0.03 and 0.04 fall inside steps; 0.05 ends the run
     np.testing.assert_allclose(recorder.series("x")[:, 0], 2.0 + 3.0 * times, atol=1e-12)
     np.testing.assert_allclose(recorder.series("y")[:, 1], times**2, atol=0.001**2 / 8 * 2 + 1e-15)
+
+
+def test_a_retried_step_replaces_its_first_try():
+    """Exudyn retries a step from the same start with a smaller size when it meets a contact
+    onset: the first try passed over the output time 0.02 s, the retry does not. The sample
+    is interpolated between the retry's start and the next step's, never divided by the zero
+    span between the two tries."""
+    times = np.arange(4) * 0.01
+    system = FakeSystem()
+    recorder = Recorder(["x", "y"], times=times, step=0.001)
+    steps = [(t, t + 0.001) for t in np.round(np.arange(0.0, 0.0195, 0.001), 12)]
+    steps += [(0.0195, 0.0205), (0.0195, 0.0197)]  # the first try, then the retry
+    steps += [(t, t + 0.001) for t in np.round(0.0197 + np.arange(0.0, 0.0103, 0.001), 12)]
+    steps.append((0.0307, np.inf))  # the run's end
+    for start, end in steps:
+        system.t = start
+        recorder.take(system, start, end)
+    assert len(recorder.values) == times.size
+    np.testing.assert_allclose(recorder.series("x")[:, 0], 2.0 + 3.0 * times, atol=1e-12)
