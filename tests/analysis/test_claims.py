@@ -342,3 +342,32 @@ def test_the_exponent_of_the_flexible_and_the_rigid_mechanism_side_by_side(tmp_p
     primary = evidence.index("median over 4 members 271 1/s")
     beside = evidence.index("; beside it, median over 4 members 57 1/s")
     assert primary < beside < evidence.index("A.x: λ = 80 1/s")
+
+
+def test_the_cross_check_claim_reads_the_differences_over_the_peak_as_written(tmp_path):
+    """The summary's raw `max` is already the largest difference over the peak
+    (sim.crosscheck.compare.error_norms): the claim quotes it as it is, not over the peak
+    again."""
+    import json
+
+    def norms(share: float, peak: float) -> dict:
+        return {"raw": {"max": share, "rms": share / 3, "peak": peak}}
+
+    case = {
+        "clearance": False,
+        "deterministic": {
+            "displacement": norms(1.5e-8, 0.12),
+            "velocity": norms(2e-6, 1.9),
+            "acceleration": norms(4e-4, 150.0),
+            "drive_torque": norms(6e-4, 80.0),
+        },
+    }
+    path = tmp_path / "crosscheck.json"
+    path.write_text(json.dumps({"ran": True, "cases": {"rigid-ideal": case}}))
+    claims, _ = judge_all({"cross_check_summary": str(path)}, BOOT)
+    row = next(r for r in claims if r["claim"].startswith("The model agrees with ADAMS"))
+    assert row["verdict"] == SUPPORTED
+    assert (
+        "displacement 1.5e-08, velocity 2e-06, acceleration 0.0004, drive torque 0.0006"
+        in (row["key"])
+    )
