@@ -154,9 +154,30 @@ def _check_exponent_comparison(work: Path) -> None:
     assert (table.members == 3).all()
     landing = (work / "results/report/landing.rst").read_text()
     numbers = landing[landing.index("The exponents in numbers") :]
-    for case in ("clearance-0.5mm", "clearance-0.1mm", "clearance-0.4mm"):
+    for case in ("clearance-0.5mm", "clearance-0.1mm", "clearance-0.4mm", "tsuji", "dry"):
         assert case in numbers
-    assert numbers.count(">rigid (primary)<") == numbers.count(">modal<") == 3
+    # a row per ensemble case of every study the front page reads, on each link model
+    studies = ("flagship", "clearance-size", "contact-laws", "lubrication")
+    cases = sum(
+        pd.read_csv(work / f"results/{study}/tables/model_exponent.csv").case.nunique()
+        for study in studies
+    )
+    assert cases == 1 + 2 + 5 + 2
+    assert numbers.count(">rigid (primary)<") == numbers.count(">modal<") == cases
+
+
+def _check_comparison_sections(work: Path) -> None:
+    """The front page's sections on the contact laws and the oil film, after the paper's: a row
+    per law and per case, and their closing sentences."""
+    landing = (work / "results/report/landing.rst").read_text()
+    laws = landing[landing.index("Does the chaos depend on the contact law?") :]
+    for law in ("lankarani-nikravesh", "hunt-crossley", "flores", "gonthier-carvalho", "tsuji"):
+        assert f"{law} (" in laws
+    assert "The paper&#x27;s chaos claims " in laws
+    oil = landing[landing.index("Does lubrication remove the chaos?") :]
+    assert "dry (dry)" in oil and "lubricated (oil in A)" in oil
+    assert "Peak contact force, median over revolutions and members, lubricated minus dry" in oil
+    assert "The oil film " in oil or "The dry mechanism " in oil
 
 
 def _check_budget(work: Path) -> None:
@@ -289,6 +310,7 @@ def test_quick_workflow_end_to_end(quick_workflow):
         _check_file(work / name)
     _check_ensembles(work)
     _check_exponent_comparison(work)
+    _check_comparison_sections(work)
     _check_bifurcation(work)
     _check_budget(work)
     _check_report(work)
