@@ -15,7 +15,7 @@ from sim.claims import exponents_by_case, flagship_verdicts, members_summary
 
 class CaseChaos(NamedTuple):
     """One case: its model exponents [(links, primary, summary)], the primary first; claim 5's
-    verdict on it and its channels' verdicts in a few words."""
+    verdict on it, and its channels' verdicts with B y's section period in a few words."""
 
     exponents: list[tuple[str, bool, str]]
     verdict: str
@@ -33,11 +33,15 @@ def case_chaos(inputs: Mapping[str, object], role: str) -> dict[str, CaseChaos]:
     for path in inputs.get(f"{role}_analyses", []):
         case = Path(path).stem
         with xr.open_dataset(path) as analysis:
-            verdict, verdicts, _ = flagship_verdicts(analysis.load())
+            verdict, verdicts, period = flagship_verdicts(analysis.load())
+        channels = ", ".join(f"{channel} {v}" for channel, v in verdicts.items())
+        # claim 5 also asks that B y's Poincaré map be a single point
+        by_period = period.get("B.y", 0)
+        points = "no repeat" if by_period == 0 else f"period {by_period}"
         out[case] = CaseChaos(
             [(str(r.links), bool(r.primary), members_summary(r)) for r in exponents.get(case, [])],
             verdict,
-            ", ".join(f"{channel} {v}" for channel, v in verdicts.items()),
+            f"{channels}; B y's section: {points}",
         )
     return out
 

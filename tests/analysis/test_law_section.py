@@ -91,7 +91,10 @@ def test_each_law_s_row_reads_its_own_case(tmp_path):
     assert ln["chaos"].exponents[0] == ("modal", True, "280 1/s [252, 308] 1/s")
     assert ln["chaos"].exponents[1] == ("rigid", False, "70 1/s [63, 77] 1/s")
     assert ln["chaos"].verdict == SUPPORTED
-    assert tsuji["chaos"][1:] == (MIXED, "A.x chaotic, A.y chaotic, B.x periodic, B.y periodic")
+    assert tsuji["chaos"][1:] == (
+        MIXED,
+        "A.x chaotic, A.y chaotic, B.x periodic, B.y periodic; B y's section: period 1",
+    )
     # the synthetic diagrams turn chaotic from their 4th point, 0.4 mm
     assert ln["clearance"] == (SUPPORTED, ln["clearance"][1], "from 0.4 mm")
 
