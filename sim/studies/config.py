@@ -345,26 +345,22 @@ def exponent_files(settings: Mapping) -> list[tuple[str, dict]]:
 
 # ---------------------------------------------------------------- integrators
 @cache
-def scene_kinds(scene: str) -> dict[str, str]:
-    """Each body of a scene (name or path) and its link model (`kind`) as the scene gives it."""
-    from sim.scene import load_scene
-
-    return {name: body["kind"] for name, body in load_scene(scene)["bodies"].items()}
-
-
-@cache
-def scene_method(scene: str) -> str:
-    """The integrator (`solver.method`) a scene names when no override sets it."""
-    from sim.scene import load_scene
-
-    return load_scene(scene)["solver"]["method"]
-
-
-@cache
-def _loaded_scene(scene: str) -> dict:
+def loaded_scene(scene: str) -> dict:
+    """A scene (name or path) loaded once per process: the plan reads it for every study and
+    case (never modified: overrides make a copy, sim.scene.with_overrides)."""
     from sim.scene import load_scene
 
     return load_scene(scene)
+
+
+def scene_kinds(scene: str) -> dict[str, str]:
+    """Each body of a scene (name or path) and its link model (`kind`) as the scene gives it."""
+    return {name: body["kind"] for name, body in loaded_scene(scene)["bodies"].items()}
+
+
+def scene_method(scene: str) -> str:
+    """The integrator (`solver.method`) a scene names when no override sets it."""
+    return loaded_scene(scene)["solver"]["method"]
 
 
 def override_texts(overrides: Mapping[str, Any]) -> list[str]:
@@ -382,7 +378,7 @@ def case_contacts(settings: Mapping) -> dict[str, dict]:
 
     def contacts(overrides: Mapping) -> dict:
         scene = settings["scene"]
-        resolved = with_overrides(_loaded_scene(scene), override_texts(overrides), scene)
+        resolved = with_overrides(loaded_scene(scene), override_texts(overrides), scene)
         oiled = [name for name, joint in resolved["joints"].items() if joint.get("lubricant")]
         return {"law": resolved["contact"]["law"], "lubricated": oiled}
 
@@ -515,23 +511,20 @@ def check_scenes(studies: Mapping[str, Mapping]) -> None:
     integrates; refuse the plan at the first that cannot run (ConfigError naming the study,
     the case and, for a linkage that locks, the crank angle).
 
-    Each scene file is read once: load_scene(scene, overrides) is the loaded scene with the
-    overrides applied, its defaults filled in again and validated, which this does per case
+    Each scene file is read once (loaded_scene); with_overrides applies a case's overrides to
+    it, fills its defaults in again and validates it, which this does per case
     (0.4 ms a case). The turn is driven once per distinct geometry
     (sim.model.mobility.kinematic_key): the cases of a study usually differ in clearances,
     link models or speed only."""
     from sim.model.assembly import AssemblyError
     from sim.model.mobility import drive_through_turn, kinematic_key
-    from sim.scene import SceneError, load_scene, with_overrides
+    from sim.scene import SceneError, with_overrides
 
-    loaded: dict[str, dict] = {}
     turned: set[str] = set()
     for name, case, scene, overrides in planned_scenes(studies):
         texts = override_texts(overrides)
         try:
-            if scene not in loaded:
-                loaded[scene] = load_scene(scene)
-            resolved = with_overrides(loaded[scene], texts, scene)
+            resolved = with_overrides(loaded_scene(scene), texts, scene)
             key = kinematic_key(resolved)
             if key not in turned:
                 drive_through_turn(resolved)
