@@ -81,35 +81,42 @@ def stretch(result: BenettinResult) -> dict:
     return out | {"top5pct_share": round(float(top.sum() / per_interval.sum()), 3)}
 
 
+def exponent_row(
+    scene: dict, point: str, links: str, revolutions: str, transient: str, setting: str
+) -> dict:
+    """The exponent of `scene` at one RTOL:INTERVAL:D0 setting, as one JSON-ready row."""
+    rtol, interval, d0 = setting.split(":")
+    cpu = time.process_time()
+    result = linkage_lyapunov(
+        scene,
+        revolutions=float(revolutions),
+        transient_revolutions=float(transient),
+        d0=float(d0),
+        interval_revolutions=float(Fraction(interval)),
+        tolerances=(float(rtol), float(rtol) / 100),
+        rigid=links.startswith("rigid"),
+    )
+    return {
+        "point": point,
+        "links": links,
+        "rtol": float(rtol),
+        "interval_revolutions": interval,
+        "d0_m": float(d0),
+        "revolutions": float(revolutions),
+        "transient": float(transient),
+        "exponent_per_s": round(result.exponent, 1),
+        "stderr_per_s": round(result.stderr, 1),
+        "cpu_s": round(time.process_time() - cpu, 1),
+        "stretch": stretch(result),
+    }
+
+
 def main() -> None:
     point, links, revolutions, transient, *settings = sys.argv[1:]
     name, overrides = POINTS[point]
     scene = load_scene(name, overrides + link_overrides(links))
     for setting in settings:
-        rtol, interval, d0 = setting.split(":")
-        cpu = time.process_time()
-        result = linkage_lyapunov(
-            scene,
-            revolutions=float(revolutions),
-            transient_revolutions=float(transient),
-            d0=float(d0),
-            interval_revolutions=float(Fraction(interval)),
-            tolerances=(float(rtol), float(rtol) / 100),
-            rigid=links.startswith("rigid"),
-        )
-        row = {
-            "point": point,
-            "links": links,
-            "rtol": float(rtol),
-            "interval_revolutions": interval,
-            "d0_m": float(d0),
-            "revolutions": float(revolutions),
-            "transient": float(transient),
-            "exponent_per_s": round(result.exponent, 1),
-            "stderr_per_s": round(result.stderr, 1),
-            "cpu_s": round(time.process_time() - cpu, 1),
-            "stretch": stretch(result),
-        }
+        row = exponent_row(scene, point, links, revolutions, transient, setting)
         print(json.dumps(row), flush=True)
 
 

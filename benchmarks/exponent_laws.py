@@ -1,48 +1,43 @@
-"""The model exponent under each damping law at one operating point of the six-bar, rigid
-links, at several renormalisation intervals: whether the exponent is interval-invariant (a
-linearised exponent) or not (a finite-size one) under each law.
+"""The model exponent under each damping law at one operating point of the six-bar and one
+link model, at several settings: whether the exponent is interval-invariant (a linearised
+exponent) or not (a finite-size one) under each law.
 
-One JSON line per (law, interval): the exponent (1/s, `linkage_lyapunov`, its default
-tolerances and d0 = 1e-6 m), its standard error and the CPU seconds it took.
+Points, link models and settings as in benchmarks/exponent_invariance.py (RTOL:INTERVAL:D0,
+atol = rtol / 100). One JSON line per (law, setting): the exponent (1/s, `linkage_lyapunov`),
+its standard error, the CPU seconds it took and the stretch's quantiles. `--laws` restricts
+the laws (all of docs/model.md's table by default).
 
-Usage: python benchmarks/exponent_laws.py POINT REVOLUTIONS TRANSIENT INTERVAL...
-e.g.   python benchmarks/exponent_laws.py flagship 8 2 1/32 1/128 1/512
+Usage: python benchmarks/exponent_laws.py POINT LINKS REVOLUTIONS TRANSIENT SETTING...
+                                          [--laws NAME ...]
+e.g.   python benchmarks/exponent_laws.py slow rigid 24 4 1e-6:1/32:1e-6 1e-6:1/512:1e-6
 """
 
+import argparse
 import json
-import sys
-import time
-from fractions import Fraction
 
-from exponent_invariance import POINTS
+from exponent_invariance import POINTS, exponent_row, link_overrides
 
 from sim.model.contact_laws import LAW_NAMES
 from sim.scene import load_scene
-from sim.studies.model_lyapunov import linkage_lyapunov
 
 
 def main() -> None:
-    point, revolutions, transient, *intervals = sys.argv[1:]
-    for law in LAW_NAMES:
-        scene = load_scene("sixbar", [*POINTS[point], f"contact.law={law}"])
-        for interval in intervals:
-            start = time.process_time()
-            result = linkage_lyapunov(
-                scene,
-                revolutions=float(revolutions),
-                transient_revolutions=float(transient),
-                interval_revolutions=float(Fraction(interval)),
-                rigid=True,
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("point", choices=sorted(POINTS))
+    parser.add_argument("links")
+    parser.add_argument("revolutions")
+    parser.add_argument("transient")
+    parser.add_argument("settings", nargs="+", metavar="RTOL:INTERVAL:D0")
+    parser.add_argument("--laws", nargs="+", choices=LAW_NAMES, default=list(LAW_NAMES))
+    args = parser.parse_args()
+    name, overrides = POINTS[args.point]
+    for law in args.laws:
+        scene = load_scene(name, [*overrides, *link_overrides(args.links), f"contact.law={law}"])
+        for setting in args.settings:
+            row = exponent_row(
+                scene, args.point, args.links, args.revolutions, args.transient, setting
             )
-            row = {
-                "point": point,
-                "law": law,
-                "interval_revolutions": interval,
-                "exponent_per_s": round(result.exponent, 1),
-                "stderr_per_s": round(result.stderr, 1),
-                "cpu_s": round(time.process_time() - start, 1),
-            }
-            print(json.dumps(row), flush=True)
+            print(json.dumps({"law": law} | row), flush=True)
 
 
 if __name__ == "__main__":
