@@ -70,7 +70,15 @@ def test_sweep_keeps_the_points_it_finished(tmp_path):
     argv = [SIM, "sweep", "slider-crank", "--key", "simulation.revolutions"]
     argv += ["--values", "2", "20000", "--transient", "0", "--label", "length"]
     argv += ["--out-dir", str(out_dir), "-o", str(tmp_path / "sweep.nc")]
-    sweep = subprocess.Popen(argv, stderr=subprocess.PIPE, text=True, cwd=tmp_path)
+    # a shell's background job (`pytest &`, nohup) hands its children SIGINT ignored, and
+    # Python keeps it so: the sweep gets the default action back, as a terminal's Ctrl-C finds it
+    sweep = subprocess.Popen(
+        argv,
+        stderr=subprocess.PIPE,
+        text=True,
+        cwd=tmp_path,
+        preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL),
+    )
     lines = []
     for line in sweep.stderr:
         lines.append(line.rstrip("\n"))
