@@ -345,9 +345,10 @@ def members_summary(row: pd.Series) -> str:
         return (
             f"{number(row.median_exponent_per_s)} ± {number(row.mean_member_stderr_per_s, '1/s')}"
         )
-    low, high = row.interval_low_per_s, row.interval_high_per_s
-    bounds = interval(low, high, "1/s", missing="(no interval)")
-    return f"{number(row.median_exponent_per_s, '1/s')} {bounds}"
+    bounds = interval(row.interval_low_per_s, row.interval_high_per_s, "1/s", missing="")
+    if not bounds:
+        return f"{number(row.median_exponent_per_s, '1/s')} (no interval)"
+    return f"{number(row.median_exponent_per_s)} {bounds}"
 
 
 def exponents_by_case(path) -> list[tuple[str, list[pd.Series]]]:

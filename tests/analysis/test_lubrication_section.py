@@ -65,7 +65,7 @@ def test_a_film_that_keeps_the_chaos_and_lowers_the_force(tmp_path):
     assert "0.6 Pa s" in text and "0 of 2 channels chaotic" in text
     assert (
         "The oil film does not remove the chaos: lubricated keeps chaotic channels (model "
-        "exponents: dry 280 1/s [252, 308] 1/s; lubricated 150 1/s [135, 165] 1/s)."
+        "exponents: dry 280 [252, 308] 1/s; lubricated 150 [135, 165] 1/s)."
     ) in text
 
 
