@@ -7,6 +7,8 @@ in absolute coordinates under multipliers (solver.coordinates: absolute):
 
   - rhs: one full evaluation ẏ = f(t, y);
   - the same evaluation in the scene's minimal coordinates (sim.model.tree), for comparison;
+  - one DOPRI5 step there (six evaluations, the stage sums, the error estimate, the
+    continuous extension), to set against six evaluations called one by one;
   - generalized forces: gravity, both clearance joints' contact forces (and beams, none here);
   - revolute / translational clearance forces alone;
   - constraint terms: Φ, Φ_q, γ, ν;
@@ -27,6 +29,7 @@ from sim.model.constraints import constraint_terms
 from sim.model.gaps import MEM_IN_CONTACT
 from sim.run import prepare
 from sim.scene import load_scene
+from sim.solve import dopri
 from sim.solve.dae import generalized_forces, no_rotations, project_onto_tree, rhs
 from sim.solve.linalg import cholesky_in_place, cholesky_solve_in_place
 from sim.solve.status import OK
@@ -39,6 +42,12 @@ ABSOLUTE = "solver.coordinates=absolute"
 def _rhs_loop(sys, work, mem, t, y, ydot, calls):
     for _ in range(calls):
         rhs(sys, work, mem, t, y, ydot)
+
+
+@kernel
+def _step_loop(sys, work, carry, mem, t, h, y, options, tally, calls):
+    for _ in range(calls):
+        dopri.step(sys, work, carry, mem, t, h, y, options, tally)
 
 
 @kernel
@@ -129,12 +138,18 @@ def main() -> None:
     tree = prepare(load_scene("sixbar", CASE), revolutions=1.0)
     y_tree = y.copy()
     project_onto_tree(tree.system, tree.work, t, y_tree)
+    _, _, carry, _, _, options, _, tallies = tree.arguments(t)
+    rhs(tree.system, tree.work, mem, t, y_tree, carry.derivative)  # the step's k1
+    tree_rhs = per_call_us(_rhs_loop, tree.system, tree.work, mem, t, y_tree, ydot, calls=calls)
+    step_args = (tree.system, tree.work, carry, mem, t, 1e-5, y_tree, options, tallies[0])
     figures = {
         "rhs (one evaluation, multipliers)": per_call_us(
             _rhs_loop, sys, work, mem, t, y, ydot, calls=calls
         ),
-        "rhs in minimal coordinates": per_call_us(
-            _rhs_loop, tree.system, tree.work, mem, t, y_tree, ydot, calls=calls
+        "rhs in minimal coordinates": tree_rhs,
+        "  6 of them, called one by one": 6 * tree_rhs,
+        "  one DOPRI5 step there (h = 10 µs)": per_call_us(
+            _step_loop, *step_args, calls=calls // 4
         ),
         "generalized forces": per_call_us(_forces_loop, sys, work, mem, t, y, calls=calls),
         "  revolute clearance (A)": per_call_us(_revolute_loop, sys, work, mem, y, calls=calls),

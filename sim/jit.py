@@ -20,13 +20,15 @@ every field of `System` and `Work`: a tenth of a second and more for each kernel
 - `entry`: a kernel that Python calls, such as the integration loop: a library with its
   wrapper.
 - `kernel`: a kernel for compiled callers, one library without wrappers, linked into its
-  callers: for what is large and called from several places (the right-hand side, one
-  sample row, an integration method's step).
+  callers: for what is large and called from several places (the right-hand side where
+  it runs once, at an event or a sample; one sample row; generalized-α's step).
 - `kernel_inline`: a small kernel for compiled callers, inlined into each by LLVM
   (``alwaysinline``), without wrappers: point kinematics, force laws, the evaluation's parts.
   Inlined, numba no longer passes `System` and `Work` to it field by field on the stack
   (hundreds of words), which made rigid runs 1.3 × slower when LLVM stopped inlining the
-  point kinematics on its own.
+  point kinematics on its own. So is what runs at every stage or every step, however large:
+  DOPRI5's step with its evaluation (`sim.solve.dae.rhs_inline`), the guide frame, the
+  values recorded at each step's end.
 - `spliced`: a part of the one or two kernels that call it, spliced into their body by numba
   before typing, so that it is no library at all: the integration loop's steps. Also what
   returns a view of an array (`sim.solve.dae.no_rotations`), which a library cannot without

@@ -95,7 +95,7 @@ def _eccentricity_rate(sys, j: int, q, qd, cb: float, sb: float, cj: float, sj: 
     return jx - bx, jy - by
 
 
-@kernel
+@kernel_inline
 def guide_frame(sys, j: int) -> tuple[float, float, float, float]:
     """Tangent and normal (t_x, t_y, n_x, n_y) of the guide of translational clearance j."""
     c = sys.tj[j].cos_angle
@@ -193,13 +193,13 @@ def _flagged_edge(sys, mem: np.ndarray, j: int, w: int) -> int:
     return -1
 
 
-@kernel
+@kernel_inline
 def face_energy(sys, j: int, da: float, db: float) -> float:
     """Elastic energy (J) of slider j's face pressed in to end depths da, db (m)."""
     return sys.tj[j].k_face * (da * da + da * db + db * db) / 6.0
 
 
-@kernel
+@kernel_inline
 def corner_energy(sys, j: int, delta: float) -> float:
     """Elastic energy (J) of one corner of slider j pressed in to depth δ (m)."""
     p = sys.contact.exponent
@@ -319,7 +319,7 @@ def revolute_clearance_forces(
     return p_diss, u_contact
 
 
-@kernel
+@kernel_inline
 def _slider_force(
     sys,
     j: int,

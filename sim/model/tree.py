@@ -136,6 +136,32 @@ def tree_columns(tree: np.ndarray) -> int:
     return int(tree.size + tree["child_modes"].sum())
 
 
+def tree_pattern(tree: np.ndarray, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """The columns of J where each of its n rows can be nonzero, ascending (n, columns), and
+    how many (n,): the pattern `tree_kinematics` fills. A body's x and y rows hold its
+    ancestors' columns (their rows' pattern) and its own angle's and amplitudes'; its angle
+    row the angle's column alone; an amplitude's row its own column. The projected mass
+    matrix and the accelerations sum over these columns only (sim.solve.dae)."""
+    columns = tree_columns(tree)
+    pattern: list[set[int]] = [set() for _ in range(n if columns else 0)]
+    for hinge in tree:
+        p, c, modes = int(hinge["parent"]), int(hinge["child"]), int(hinge["child_modes"])
+        own = {int(hinge["modal_column"]) + m for m in range(modes)}
+        for m in range(modes):
+            pattern[c + 3 + m] = {int(hinge["modal_column"]) + m}
+        position = {int(hinge["column"])} | own
+        if p >= 0:
+            for i in range(p, p + 3 + int(hinge["parent_modes"])):
+                position |= pattern[i]
+        pattern[c] = pattern[c + 1] = position
+        pattern[c + 2] = {int(hinge["column"])}
+    cols = np.zeros((len(pattern), columns), dtype=np.int64)
+    ncols = np.array([len(row) for row in pattern], dtype=np.int64)
+    for i, row in enumerate(pattern):
+        cols[i, : len(row)] = sorted(row)
+    return cols, ncols
+
+
 @kernel_inline
 def _hinge_point(sys, k: int, o: int, modes: int, ux: float, uy: float, q, qd, cos_t, sin_t):
     """A(θ) u and A(θ) Ψ q̇_m of hinge point k (body-frame ū = (ux, uy)) on the body at offset

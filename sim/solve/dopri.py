@@ -13,7 +13,7 @@ import numpy as np
 
 from sim.jit import kernel, kernel_inline, spliced
 from sim.solve.control import ERR_MIN, ERR_OLD_MIN
-from sim.solve.dae import adopt_tree_state, rhs
+from sim.solve.dae import adopt_tree_state, rhs_inline
 from sim.solve.dense import hermite_coefficients, interpolate
 from sim.solve.record import record_row
 from sim.solve.status import OK
@@ -42,48 +42,54 @@ STRETCH = 1.01
 step is left over."""
 
 
+STAGE_A = np.array(
+    [
+        [A21, 0.0, 0.0, 0.0, 0.0, 0.0],
+        [A31, A32, 0.0, 0.0, 0.0, 0.0],
+        [A41, A42, A43, 0.0, 0.0, 0.0],
+        [A51, A52, A53, A54, 0.0, 0.0],
+        [A61, A62, A63, A64, A65, 0.0],
+        [A71, 0.0, A73, A74, A75, A76],
+    ]
+)
+"""The tableau's rows of the stages k2…k6 and of the new state (where k7 is evaluated), its
+columns k1…k6; a zero is no term at all."""
+STAGE_C = np.array([C2, C3, C4, C5, 1.0, 1.0])
+"""The nodes of those rows: fractions of the step."""
+
+
 @spliced
 def _stages(sys, work, carry, mem, t: float, h: float, y: np.ndarray) -> int:
     """Stages k2…k6 from k1 = carry.derivative into carry.stages; the new state into
-    work.ynew, k7 = its derivative into work.ydot_end."""
+    work.ynew, k7 = its derivative into work.ydot_end. One loop over the rows of STAGE_A,
+    so that the evaluation, inlined (`rhs_inline`), is compiled once and not called six
+    times with `System` and `Work` passed field by field; the sums in the tableau's order,
+    term by term, as six written-out combinations would make them."""
     k1 = carry.derivative
-    k2 = carry.stages[0]
-    k3 = carry.stages[1]
-    k4 = carry.stages[2]
-    k5 = carry.stages[3]
-    k6 = carry.stages[4]
-    k7 = work.ydot_end
-    yt = work.ytmp
-    yn = work.ynew
     ny = y.shape[0]
-    for i in range(ny):
-        yt[i] = y[i] + h * A21 * k1[i]
-    s = rhs(sys, work, mem, t + C2 * h, yt, k2)
-    if s != OK:
-        return s
-    for i in range(ny):
-        yt[i] = y[i] + h * (A31 * k1[i] + A32 * k2[i])
-    s = rhs(sys, work, mem, t + C3 * h, yt, k3)
-    if s != OK:
-        return s
-    for i in range(ny):
-        yt[i] = y[i] + h * (A41 * k1[i] + A42 * k2[i] + A43 * k3[i])
-    s = rhs(sys, work, mem, t + C4 * h, yt, k4)
-    if s != OK:
-        return s
-    for i in range(ny):
-        yt[i] = y[i] + h * (A51 * k1[i] + A52 * k2[i] + A53 * k3[i] + A54 * k4[i])
-    s = rhs(sys, work, mem, t + C5 * h, yt, k5)
-    if s != OK:
-        return s
-    for i in range(ny):
-        yt[i] = y[i] + h * (A61 * k1[i] + A62 * k2[i] + A63 * k3[i] + A64 * k4[i] + A65 * k5[i])
-    s = rhs(sys, work, mem, t + h, yt, k6)
-    if s != OK:
-        return s
-    for i in range(ny):
-        yn[i] = y[i] + h * (A71 * k1[i] + A73 * k3[i] + A74 * k4[i] + A75 * k5[i] + A76 * k6[i])
-    return rhs(sys, work, mem, t + h, yn, k7)
+    for s in range(STAGE_A.shape[0]):
+        last = s == STAGE_A.shape[0] - 1
+        state = work.ynew if last else work.ytmp
+        derivative = work.ydot_end if last else carry.stages[s]
+        if s == 0:
+            for i in range(ny):
+                state[i] = y[i] + h * A21 * k1[i]
+        else:
+            # the sum term by term over all of the state, then the state: loops that vectorise
+            for i in range(ny):
+                state[i] = STAGE_A[s, 0] * k1[i]
+            for r in range(1, s + 1):
+                a = STAGE_A[s, r]
+                if a != 0.0:
+                    k = carry.stages[r - 1]
+                    for i in range(ny):
+                        state[i] += a * k[i]
+            for i in range(ny):
+                state[i] = y[i] + h * state[i]
+        status = rhs_inline(sys, work, mem, t + STAGE_C[s] * h, state, derivative)
+        if status != OK:
+            return status
+    return OK
 
 
 @spliced
@@ -156,11 +162,12 @@ def start(sys, work, carry) -> None:
     """Nothing to prepare: a step starts from y and Carry.derivative alone."""
 
 
-@kernel
+@kernel_inline
 def step(sys, work, carry, mem, t: float, h: float, y: np.ndarray, options, tally):
     """One step from (t, y), k1 = ẏ in carry.derivative: the new state into work.ynew,
     its derivative into work.ydot_end, the dense output into work.dense; its six
-    evaluations counted in tally. Returns (status, error estimate scaled to the tolerance)."""
+    evaluations counted in tally. Returns (status, error estimate scaled to the tolerance).
+    Inlined into the loops that take it (the integration and the lockstep follower)."""
     tally.evaluations += 6
     s = _stages(sys, work, carry, mem, t, h, y)
     if s != OK:

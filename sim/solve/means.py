@@ -31,7 +31,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from sim.jit import kernel, spliced
+from sim.jit import kernel, kernel_inline, spliced
 from sim.quantities import INTERVAL_MEAN, SAMPLE, recorded
 from sim.solve.dense import interpolate
 from sim.solve.record import (
@@ -164,7 +164,7 @@ def _integrate_to(means, t: float, t_end_step: float) -> None:
     clock.t_node = t
 
 
-@kernel
+@kernel_inline
 def close_windows(sys, work, means, out_t: np.ndarray, out_rows: np.ndarray, t0: float, h: float):
     """After the accepted step from t0 to t0 + h (its end values in means.end, its
     continuous extension in work.dense, its samples recorded): close every window that ends

@@ -233,7 +233,7 @@ def crank_angle(sys, q: np.ndarray) -> float:
     return q[sys.drive_coord] if sys.drive_coord >= 0 else 0.0
 
 
-@kernel
+@kernel_inline
 def write_fast_values(sys, work, y: np.ndarray, cols, row: np.ndarray) -> None:
     """Into row's blocks (`RowColumns` cols): the point values at the state y that work was
     evaluated at of the quantities whose peaks are kept or whose interval means are a

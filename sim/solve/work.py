@@ -15,7 +15,7 @@ from sim.model.system import (
     System,
     n_clearance_joints,
 )
-from sim.model.tree import tree_columns
+from sim.model.tree import tree_columns, tree_pattern
 from sim.solve.dae import N_SCALARS
 from sim.solve.linalg import LUPattern, lu_pattern
 from sim.solve.tangent import iteration_pattern
@@ -70,6 +70,8 @@ class Work(NamedTuple):
     tree_mass: np.ndarray  # (columns − 1, columns − 1) Jᵀ M J, then its Cholesky factor
     tree_zdd: np.ndarray  # (columns − 1,) Jᵀ (Q − M a_b), then z̈
     tree_first: np.ndarray  # (columns − 1,) zeros: Jᵀ M J is dense
+    tree_cols: np.ndarray  # (n, columns) the columns where each row of J can be nonzero
+    tree_ncols: np.ndarray  # (n,) how many (sim.model.tree.tree_pattern)
 
 
 def state_size(system: System) -> int:
@@ -147,6 +149,7 @@ def make_work(system: System) -> Work:
     columns = tree_columns(system.tree)
     free = max(columns - 1, 0)
     n_tree = n if columns else 0
+    tree_cols, tree_ncols = tree_pattern(system.tree, n)
     return Work(
         phi=np.zeros(m),
         jac=np.zeros((m, n)),
@@ -189,4 +192,6 @@ def make_work(system: System) -> Work:
         tree_mass=np.zeros((free, free)),
         tree_zdd=np.zeros(free),
         tree_first=np.zeros(free, dtype=np.int64),
+        tree_cols=tree_cols,
+        tree_ncols=tree_ncols,
     )

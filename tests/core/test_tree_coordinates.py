@@ -108,6 +108,28 @@ def _contact_state(*links: str) -> tuple[float, np.ndarray, np.ndarray]:
 
 
 @pytest.mark.parametrize("links", [(), MODAL, MODAL + AXIAL], ids=["rigid", "modal", "axial"])
+def test_the_jacobian_pattern_holds_every_nonzero_and_leaves_out_the_unmoved(links):
+    """The right-hand side sums J's rows over their pattern only (sim.model.tree.tree_pattern):
+    at random states every nonzero of J must lie in it. A body's rows must leave out what does
+    not move it: the crank's angle row holds its own column alone."""
+    integ = prepare(_scene(*links, "simulation.revolutions=1"))
+    system, work = integ.system, integ.work
+    n, columns = work.tree_jac.shape
+    pattern = np.zeros((n, columns), dtype=bool)
+    for i in range(n):
+        pattern[i, work.tree_cols[i, : work.tree_ncols[i]]] = True
+    rng = np.random.default_rng(7)
+    for _ in range(5):
+        y = integ.y + rng.normal(size=integ.y.size)
+        project_onto_tree(system, work, rng.uniform(0.0, 0.4), y)
+        outside = np.argwhere((work.tree_jac != 0) & ~pattern)
+        assert outside.size == 0, f"nonzeros of J outside the pattern: {outside.tolist()}"
+    assert pattern.sum() < n * columns // 2  # sparse: no body moves with every column
+    crank = system.drive_coord
+    assert pattern[crank].tolist() == [c == columns - 1 for c in range(columns)]
+
+
+@pytest.mark.parametrize("links", [(), MODAL, MODAL + AXIAL], ids=["rigid", "modal", "axial"])
 def test_tree_and_multiplier_forms_agree_on_the_manifold(links):
     t, y, mem = _contact_state(*links)
     tree = prepare(_scene(*links, "simulation.revolutions=1"))
