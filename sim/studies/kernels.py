@@ -10,7 +10,7 @@ side, before any run of that method.
 The order inside it lets the two side-by-side compiles share the kernels common to both
 methods, the right-hand side (`sim.solve.dae.rhs`) and the sample row
 (`sim.solve.record.record_row`), instead of each compiling them. DOPRI5's run compiles them
-first (its stages call the right-hand side). Generalized-α's step calls neither, so it
+first (its events and samples call them; its stages inline the evaluation). Generalized-α's step calls neither, so it
 compiles its step first (`STEP_FIRST`), for longer than they take, and then loads them from
 the cache (`benchmarks/compile_time.py` gives the per-kernel times).
 
