@@ -10,9 +10,9 @@ side, before any run of that method.
 The order inside it lets the two side-by-side compiles share the kernels common to both
 methods, the right-hand side (`sim.solve.dae.rhs`) and the sample row
 (`sim.solve.record.record_row`), instead of each compiling them. DOPRI5's run compiles them
-first (its events and samples call them; its stages inline the evaluation). Generalized-α's step calls neither, so it
-compiles its step first (`STEP_FIRST`), for longer than they take, and then loads them from
-the cache (`benchmarks/compile_time.py` gives the per-kernel times).
+first (its events and samples call them; its stages inline the evaluation). Generalized-α's
+step calls neither, so it compiles its step first (`STEP_FIRST`), for longer than they take,
+and then loads them from the cache (`benchmarks/compile_time.py` gives the per-kernel times).
 
 One short run covers every scene of the studies: the compiled loop depends on the types of the
 system's arrays, not on their sizes, so rigid, modal and beam links, ideal and clearance
