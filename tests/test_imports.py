@@ -8,11 +8,16 @@ does not import the parent back).
 """
 
 import ast
+import subprocess
+import sys
 from pathlib import Path
 
 import sim
 
 PACKAGE_ROOT = Path(sim.__file__).parent
+#: what `sim run` does not need, each a quarter to half a second of a start to import: the
+#: analyses' and the recordings' signal processing, the rare fallbacks' solvers
+NOT_FOR_A_RUN = ("sim.analysis.run", "scipy.signal", "scipy.optimize", "scipy.integrate")
 
 
 def module_names() -> dict[str, Path]:
@@ -101,3 +106,11 @@ def test_nothing_in_the_library_imports_the_command_line():
         and any(t == "sim.cli" or t.startswith("sim.cli.") for t in targets)
     )
     assert importers == []
+
+
+def test_the_command_line_and_the_simulator_start_without_the_analyses():
+    shown = "import sys, sim.cli, sim.run; print(*sorted(set(sys.argv[1:]) & set(sys.modules)))"
+    loaded = subprocess.run(
+        [sys.executable, "-c", shown, *NOT_FOR_A_RUN], capture_output=True, text=True, check=True
+    )
+    assert loaded.stdout.split() == []

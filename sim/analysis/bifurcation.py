@@ -7,8 +7,8 @@ import numpy as np
 import xarray as xr
 
 from sim.analysis.classify import VERDICTS, classify
-from sim.analysis.poincare import SECTION_RESOLUTION
-from sim.analysis.run import MIN_REVOLUTIONS, after_transient, run_scene
+from sim.analysis.poincare import MIN_REVOLUTIONS, SECTION_RESOLUTION
+from sim.analysis.run import after_transient, run_scene
 from sim.analysis.section import section_evidence
 from sim.analysis.zero_one import zero_one_test
 

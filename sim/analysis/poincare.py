@@ -9,6 +9,8 @@ import numpy as np
 SECTION_RESOLUTION = 0.01
 #: longest period looked for, in section crossings
 MAX_PERIOD = 12
+#: section points needed after the transient (the period search needs 2 · 12 + 1)
+MIN_REVOLUTIONS = 2 * MAX_PERIOD + 1
 
 
 @dataclass(frozen=True)

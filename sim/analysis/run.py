@@ -8,7 +8,7 @@ import xarray as xr
 
 from sim.analysis.classify import VERDICTS, Verdict, classify, indicator_agreement
 from sim.analysis.lyapunov import rosenstein
-from sim.analysis.poincare import MAX_PERIOD, SECTION_RESOLUTION
+from sim.analysis.poincare import MIN_REVOLUTIONS, SECTION_RESOLUTION
 from sim.analysis.section import STILL_RANGE, Coordinate, SectionEvidence, section_evidence
 from sim.analysis.zero_one import zero_one_test
 
@@ -23,8 +23,6 @@ REQUIRED_VARIABLES = {
     "section_position": ("revolution", "body", "axis"),
     "section_velocity": ("revolution", "body", "axis"),
 }
-#: section points needed after the transient (the Poincaré period search needs 2 · 12 + 1)
-MIN_REVOLUTIONS = 2 * MAX_PERIOD + 1
 #: relative deviation of the time steps tolerated as uniform sampling
 UNIFORM_SAMPLING_RTOL = 1e-6
 

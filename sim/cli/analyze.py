@@ -7,7 +7,7 @@ from pathlib import Path
 import numpy as np
 import xarray as xr
 
-from sim.analysis.run import MIN_REVOLUTIONS, analyze_run
+from sim.analysis.poincare import MIN_REVOLUTIONS
 from sim.cli.arguments import add_scene_arguments, check_output, interrupted_while
 from sim.scene_keys import Field, check_option
 
@@ -176,6 +176,7 @@ def _exponent_file(path: Path) -> xr.Dataset:
 
 def analyze_command(args: argparse.Namespace) -> int:
     """Handler of ``sim analyze``; returns the exit code."""
+    from sim.analysis.run import analyze_run
     from sim.results import open_run, write_netcdf
     from sim.run import SimulationError
 

@@ -16,17 +16,13 @@ import xarray as xr
 from sim import __version__
 from sim.atomic import write_atomically
 from sim.cli.arguments import add_scene_arguments, check_output
-from sim.experiment.alignment import align_simulation
 from sim.experiment.metadata import CHANNEL_AXES, DEFAULT_CHANNEL
-from sim.experiment.metrics import compare
 from sim.experiment.recording import (
     Recording,
     load_recording,
     metadata_path,
     write_recording,
 )
-from sim.experiment.sensor import SensorSettings, load_sensor_settings
-from sim.experiment.synthesize import synthesize_recording
 from sim.provenance import library_versions_json
 from sim.quantities import POINT
 from sim.scene_keys import DRIVE, Field, check_option
@@ -98,6 +94,8 @@ def register(subparsers: argparse._SubParsersAction) -> None:
 
 def run_synthesize(args: argparse.Namespace) -> int:
     """Handler of ``sim experiment synthesize``; returns the exit code."""
+    from sim.experiment.sensor import SensorSettings, load_sensor_settings
+    from sim.experiment.synthesize import synthesize_recording
     from sim.run import simulate
     from sim.scene import load_scene
 
@@ -183,6 +181,8 @@ def simulated_channel(
 
 def run_compare(args: argparse.Namespace) -> int:
     """Handler of ``sim experiment compare``; returns the exit code."""
+    from sim.experiment.alignment import align_simulation
+    from sim.experiment.metrics import compare
     from sim.plots.experiment import plot_overlay, plot_spectra
     from sim.results import open_run
 

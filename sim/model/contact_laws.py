@@ -24,9 +24,6 @@ from collections.abc import Callable
 from functools import cache
 from typing import NamedTuple
 
-from scipy.integrate import solve_ivp
-from scipy.optimize import brentq
-
 
 class Law(NamedTuple):
     """One damping law: its scene name, whether its damping remembers δ̇⁻, its coefficient
@@ -73,6 +70,10 @@ def _dimensionless_restitution(zeta: float, n: float) -> float:
     def leaves(_t: float, y: list[float]) -> float:
         return y[0]
 
+    # scipy is imported where a law without memory needs it, not with this module, which every
+    # run imports: scipy.integrate and scipy.optimize take half a second of each `sim` start
+    from scipy.integrate import solve_ivp
+
     leaves.terminal, leaves.direction = True, -1.0
     sol = solve_ivp(rhs, (0.0, 1e3), [0.0, 1.0], "DOP853", events=leaves, rtol=1e-11, atol=1e-13)
     return -float(sol.y_events[0][0][1])
@@ -84,6 +85,8 @@ def memoryless_damping_ratio(e: float, n: float) -> float:
     e (`_dimensionless_restitution`), 0 at e = 1."""
     if e >= 1.0:
         return 0.0
+    from scipy.optimize import brentq  # where it is needed (`_dimensionless_restitution`)
+
     hi = 1.0
     while _dimensionless_restitution(hi, n) > e:
         hi *= 4.0

@@ -15,7 +15,6 @@ from collections.abc import Callable, Iterator
 from typing import NamedTuple
 
 import numpy as np
-from scipy.optimize import least_squares
 
 from sim.model import ancf, modal
 from sim.model.assembly import AssemblyError, Layout, build_system, local_points
@@ -71,6 +70,10 @@ def _close(linearize: Callable, q0: np.ndarray) -> tuple[np.ndarray, bool]:
     q, converged = minimum_norm_newton(linearize, q0, 1e-13, 50)
     if converged:
         return q, True
+    # imported here: Newton closes the loops of almost every start, and scipy.optimize takes
+    # a quarter of a second of each `sim` start to import
+    from scipy.optimize import least_squares
+
     closest = least_squares(
         lambda x: linearize(x)[0], q0, jac=lambda x: linearize(x)[1], xtol=1e-15, ftol=1e-15
     ).x

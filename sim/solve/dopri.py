@@ -72,8 +72,9 @@ def _stages(sys, work, carry, mem, t: float, h: float, y: np.ndarray) -> int:
         state = work.ynew if last else work.ytmp
         derivative = work.ydot_end if last else carry.stages[s]
         if s == 0:
+            # one term: (h a) k1, the rounding order of y + h a21 k1 written out
             for i in range(ny):
-                state[i] = y[i] + h * A21 * k1[i]
+                state[i] = y[i] + h * STAGE_A[0, 0] * k1[i]
         else:
             # the sum term by term over all of the state, then the state: loops that vectorise
             for i in range(ny):

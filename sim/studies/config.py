@@ -437,9 +437,9 @@ def exponent_method(settings: Mapping, case: str, links: str) -> str:
 # ---------------------------------------------------------------- fidelity study
 def fidelity_long_cases(settings: Mapping) -> list[str]:
     """Cases of a fidelity study long enough for the chaos analysis (`sim analyze` needs the
-    transient and sim.analysis.run.MIN_REVOLUTIONS more): they feed the long-horizon
+    transient and sim.analysis.poincare.MIN_REVOLUTIONS more): they feed the long-horizon
     statistics (peaks, Lyapunov exponents, Poincaré distances)."""
-    from sim.analysis.run import MIN_REVOLUTIONS
+    from sim.analysis.poincare import MIN_REVOLUTIONS
 
     need = settings["transient"] + MIN_REVOLUTIONS
     return [
