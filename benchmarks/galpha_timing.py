@@ -1,10 +1,10 @@
 """Where one generalized-α step of the flexible flagship spends its time, part by part.
 
 The flagship (A and B clearances of 0.5 mm, 150 rpm) on ANCF beams of two elements under
-generalized-α at the scene's rtol 1e-5, integrated to the first quarter revolution after 2
+generalized-α at the scene's rtol 1e-5, integrated to the first 1/200 revolution after 2
 revolutions where the journal of A and a corner of the slider are both in contact. From that
-state each part is timed in a compiled loop (best of nine runs of N calls, µs per call), as
-`benchmarks/kernel_timing.py` does for DOPRI5:
+state each part is timed in a compiled loop (best of nine runs of N calls, µs per call), by
+`benchmarks/kernel_timing.py`'s timer for DOPRI5's parts:
 
   - the step with the iteration matrix kept (`sim.solve.galpha.step`), and within it Newton's
     iteration, one residual (a force and constraint evaluation) and one solve with the factors;
@@ -21,9 +21,10 @@ Usage: python benchmarks/galpha_timing.py [--calls N]
 """
 
 import argparse
-import time
+import functools
 
 import numpy as np
+from kernel_timing import per_call_us
 
 from sim.jit import kernel
 from sim.model.gaps import MEM_IN_CONTACT
@@ -47,6 +48,8 @@ SCENE = [
     *(f"bodies.{b}.kind=beam" for b in ("rod2", "rod3", "rod4")),
     "solver.method=generalized_alpha",
 ]
+REPEATS = 9
+"""Timings of each part, the best one kept."""
 #: the iteration matrix's coefficients for the parts' timing: those of a step of 20 µs
 C_M, C_C, C_K = 1.0, 1e-5, 1e-10
 
@@ -153,17 +156,6 @@ def _grazes_loop(sys, work, mem, calls):
         galpha.mark_grazes(sys, work, mem)
 
 
-def per_call_us(loop, *args, calls: int) -> float:
-    """Best of nine timings of `calls` calls, in microseconds per call."""
-    loop(*args, 2)  # compile or load from the cache
-    best = np.inf
-    for _ in range(9):
-        start = time.perf_counter()
-        loop(*args, calls)
-        best = min(best, time.perf_counter() - start)
-    return 1e6 * best / calls
-
-
 def contact_state():
     """The integration at the first chunk end after 2 revolutions where the journal of A and
     a corner of the slider are in contact, and its time."""
@@ -187,6 +179,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--calls", type=int, default=20_000)
     args = parser.parse_args()
+    time_us = functools.partial(per_call_us, repeats=REPEATS)
     integ, t, revolutions = contact_state()
     sys, work, carry, trajectory, _, options, _, tallies = integ.arguments(t)
     counts = {name: int(tallies[0][name]) for name in ("accepted", "rejected", "jacobians")}
@@ -198,45 +191,43 @@ def main() -> None:
         f"h = {h * 1e6:.0f} µs; µs per call, best of 9 × {calls}:"
     )
     figures = {
-        "step, iteration matrix kept": per_call_us(
+        "step, iteration matrix kept": time_us(
             _step_loop, sys, work, carry, mem, t, h, y, options, tallies[0], calls=calls
         )
     }
     newton = (sys, work, carry, mem, t, h, y, rtol, atol, rho_inf)
-    figures["  Newton's iteration"] = per_call_us(_newton_loop, *newton, calls=calls)
+    figures["  Newton's iteration"] = time_us(_newton_loop, *newton, calls=calls)
     _newton_loop(*newton, 1)  # leaves the converged state in work.ynew
     end = work.ynew.copy()
-    figures["    one residual"] = per_call_us(
+    figures["    one residual"] = time_us(
         _residual_loop, sys, work, carry, mem, t + h, rtol, atol, calls=5 * calls
     )
-    figures["    one solve"] = per_call_us(
+    figures["    one solve"] = time_us(
         _solve_loop, carry, work, carry.newton_rhs.copy(), calls=5 * calls
     )
     factor_schur(sys, work)
-    figures["  end: Schur complement's factors"] = per_call_us(
-        _schur_loop, sys, work, calls=5 * calls
-    )
-    figures["  end: velocity projection"] = per_call_us(
+    figures["  end: Schur complement's factors"] = time_us(_schur_loop, sys, work, calls=5 * calls)
+    figures["  end: velocity projection"] = time_us(
         _projection_loop, sys, work, end[n : 2 * n].copy(), calls=5 * calls
     )
     ydot = np.zeros_like(y)
-    figures["  end: accelerations"] = per_call_us(
+    figures["  end: accelerations"] = time_us(
         _accelerations_loop, sys, work, end, ydot, calls=5 * calls
     )
-    figures["  end: extension, energy quadratures"] = per_call_us(
+    figures["  end: extension, energy quadratures"] = time_us(
         _quadratures_loop, sys, work, mem, h, y, carry.derivative, rtol, atol, calls=5 * calls
     )
-    figures["loop: graze probes"] = per_call_us(_grazes_loop, sys, work, mem, calls=5 * calls)
+    figures["loop: graze probes"] = time_us(_grazes_loop, sys, work, mem, calls=5 * calls)
     mat = carry.it_mat
-    figures["iteration matrix and LU factors"] = per_call_us(
+    figures["iteration matrix and LU factors"] = time_us(
         _matrix_loop, sys, work, carry, mem, t + h, end, calls=calls
     )
-    figures["  beams' tangents"] = per_call_us(_beam_tangent_loop, sys, work, mat, end, calls=calls)
-    figures["  contact forces' differences"] = per_call_us(
+    figures["  beams' tangents"] = time_us(_beam_tangent_loop, sys, work, mat, end, calls=calls)
+    figures["  contact forces' differences"] = time_us(
         _contact_tangent_loop, sys, work, mat, mem, end, calls=calls
     )
     iteration_matrix(sys, work, mat, mem, t + h, end[:n], end[n : 2 * n], C_M, C_C, C_K)
-    figures["  LU over the pattern (with a copy)"] = per_call_us(
+    figures["  LU over the pattern (with a copy)"] = time_us(
         _lu_loop, work, np.empty_like(mat), mat.copy(), calls=calls
     )
     for name, value in figures.items():

@@ -94,11 +94,11 @@ def _cholesky_loop(schur, factor, b, rhs_in, m, first, calls):
         cholesky_solve_in_place(factor, m, b)
 
 
-def per_call_us(loop, *args, calls: int) -> float:
-    """Best of three timings of `calls` calls, in microseconds per call."""
+def per_call_us(loop, *args, calls: int, repeats: int = 3) -> float:
+    """Best of `repeats` timings of `calls` calls, in microseconds per call."""
     loop(*args, 10)  # compile or load from the cache
     best = np.inf
-    for _ in range(3):
+    for _ in range(repeats):
         t0 = time.perf_counter()
         loop(*args, calls)
         best = min(best, time.perf_counter() - t0)
