@@ -5,6 +5,9 @@ inside a function, since a deferred import hides a cycle without removing it). A
 the module named; a package's own `__init__` counts only where the package itself is imported
 (Python initialises a parent package before its submodules, so a submodule naming a sibling
 does not import the parent back).
+
+And a run's start imports only what a run needs: not the chaos analysis, nor scipy's signal
+processing, optimisers and integrators (docs/performance.md, "Start-up").
 """
 
 import ast

@@ -48,7 +48,7 @@ _SOURCES = {
 __all__ = sorted(_SOURCES)
 
 
-def __getattr__(name: str):
+def __getattr__(name: str) -> object:
     """An exported name, imported from its module at first use."""
     if name not in _SOURCES:
         raise AttributeError(f"module 'sim.experiment' has no attribute '{name}'")
