@@ -85,7 +85,7 @@ def memoryless_damping_ratio(e: float, n: float) -> float:
     e (`_dimensionless_restitution`), 0 at e = 1."""
     if e >= 1.0:
         return 0.0
-    from scipy.optimize import brentq  # where it is needed (`_dimensionless_restitution`)
+    from scipy.optimize import brentq  # here, as solve_ivp in `_dimensionless_restitution`
 
     hi = 1.0
     while _dimensionless_restitution(hi, n) > e:
