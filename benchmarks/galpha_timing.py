@@ -1,10 +1,10 @@
 """Where one generalized-α step of the flexible flagship spends its time, part by part.
 
 The flagship (A and B clearances of 0.5 mm, 150 rpm) on ANCF beams of two elements under
-generalized-α at the scene's rtol 1e-5, integrated to the first 1/200 revolution after 2
-revolutions where the journal of A and a corner of the slider are both in contact. From that
-state each part is timed in a compiled loop (best of nine runs of N calls, µs per call), by
-`benchmarks/kernel_timing.py`'s timer for DOPRI5's parts:
+generalized-α at the scene's rtol 1e-5, integrated to the first state after 2 revolutions with
+the journal of A and a corner of the slider in contact (`kernel_timing.contact_state`). From
+that state each part is timed in a compiled loop (best of nine runs of N calls, µs per call)
+by `benchmarks/kernel_timing.py`'s timer for DOPRI5's parts:
 
   - the step with the iteration matrix kept (`sim.solve.galpha.step`), and within it Newton's
     iteration, one residual (a force and constraint evaluation) and one solve with the factors;
@@ -24,17 +24,14 @@ import argparse
 import functools
 
 import numpy as np
-from kernel_timing import per_call_us
+from kernel_timing import contact_state, per_call_us
 
 from sim.jit import kernel
-from sim.model.gaps import MEM_IN_CONTACT
-from sim.run import prepare
 from sim.scene import load_scene
 from sim.solve import galpha
 from sim.solve.dae import factor_schur, factored_accelerations, project_velocities
 from sim.solve.dense import hermite_coefficients
 from sim.solve.linalg import pattern_lu_in_place, pattern_lu_solve_in_place
-from sim.solve.status import OK
 from sim.solve.tangent import (
     _add_beam_tangent,
     _add_contact_tangent,
@@ -156,31 +153,15 @@ def _grazes_loop(sys, work, mem, calls):
         galpha.mark_grazes(sys, work, mem)
 
 
-def contact_state():
-    """The integration at the first chunk end after 2 revolutions where the journal of A and
-    a corner of the slider are in contact, and its time."""
-    scene = load_scene("sixbar", SCENE)
-    period = 60.0 / scene["drive"]["speed_rpm"]
-    integ = prepare(scene, revolutions=4.0)
-    t = 2.0 * period
-    if integ.advance(t) != OK:
-        raise RuntimeError(f"integration failed before t = {t}")
-    while t < 4.0 * period:
-        t += period / 200
-        if integ.advance(t) != OK:
-            raise RuntimeError(f"integration failed at t = {t}")
-        closed = integ.mem[:, MEM_IN_CONTACT] > 0
-        if closed[0] and closed[1:].any():
-            return integ, t, t / period
-    raise RuntimeError("no contact found")
-
-
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--calls", type=int, default=20_000)
     args = parser.parse_args()
     time_us = functools.partial(per_call_us, repeats=REPEATS)
-    integ, t, revolutions = contact_state()
+    scene = load_scene("sixbar", SCENE)
+    period = 60.0 / scene["drive"]["speed_rpm"]
+    integ, t = contact_state(scene, after=2.0, revolutions=4.0)
+    revolutions = t / period
     sys, work, carry, trajectory, _, options, _, tallies = integ.arguments(t)
     counts = {name: int(tallies[0][name]) for name in ("accepted", "rejected", "jacobians")}
     mem, y = trajectory.mem, trajectory.y.copy()
@@ -188,7 +169,7 @@ def main() -> None:
     rtol, atol, rho_inf = options.rtol, options.atol, options.method.rho_inf
     print(
         f"flexible flagship, state at t = {t:.4f} s, n = {sys.n}, m = {sys.m}, "
-        f"h = {h * 1e6:.0f} µs; µs per call, best of 9 × {calls}:"
+        f"h = {h * 1e6:.0f} µs; µs per call, best of {REPEATS} × {calls}:"
     )
     figures = {
         "step, iteration matrix kept": time_us(
@@ -239,7 +220,7 @@ def main() -> None:
     print(
         f"per revolution up to t: {steps:.0f} steps (with rejected), {matrices:.0f} iteration "
         f"matrices: steps {step_ms:.0f} ms + matrices {matrix_ms:.0f} ms = "
-        f"{step_ms + matrix_ms:.0f} ms of the revolution's {60e3 / 150:.0f} ms simulated"
+        f"{step_ms + matrix_ms:.0f} ms of the revolution's {period * 1e3:.0f} ms simulated"
     )
 
 

@@ -105,13 +105,16 @@ def per_call_us(loop, *args, calls: int, repeats: int = 3) -> float:
     return 1e6 * best / calls
 
 
-def contact_state(revolutions: float = 5.0):
-    """The integrator's state at the first chunk end where both joints are in contact
-    (gap 0: the journal of A; gaps 1–8: the slider's corners against the guide walls)."""
-    scene = load_scene("sixbar", [*CASE, ABSOLUTE])
+def contact_state(scene: dict, after: float = 0.0, revolutions: float = 5.0):
+    """The integration of `scene` at the first chunk end (1/200 revolution apart) after
+    `after` revolutions where the journal of A and a corner of the slider are both in contact
+    (gap 0: the journal of A; gaps 1–8: the slider's corners against the guide walls), and
+    its time (s)."""
     integ = prepare(scene, revolutions=revolutions)
     period = 60.0 / scene["drive"]["speed_rpm"]
-    t = 0.0
+    t = after * period
+    if t > 0.0 and integ.advance(t) != OK:
+        raise RuntimeError(f"integration failed before t = {t}")
     while t < revolutions * period:
         t += period / 200
         if integ.advance(t) != OK:
@@ -126,7 +129,7 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--calls", type=int, default=200_000)
     args = parser.parse_args()
-    integ, t = contact_state()
+    integ, t = contact_state(load_scene("sixbar", [*CASE, ABSOLUTE]))
     sys, work, mem, y = integ.system, integ.work, integ.mem, integ.y.copy()
     ydot = np.zeros_like(y)
     calls = args.calls
