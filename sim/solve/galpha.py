@@ -26,11 +26,12 @@ that its blocks are of one order (Arnold & Brüls, sec. 4):
 with r = M q̈ + Φ_qᵀ λ − Q, K_t = −∂Q/∂q and C_t = −∂Q/∂q̇ (`sim.solve.tangent`):
 simplified Newton, the factors kept from step to step while Newton converges
 with them (Hairer & Wanner, Solving ODEs II, IV.8), convergence judged on the
-residual. What is reported (accelerations, torque, contact outputs) comes from
-the equations of motion solved at each step's end, not from the method's own
-q̈ and λ, with the step's velocities first projected onto Φ_q q̇ = ν: in the
-index-3 form they satisfy it only to the position tolerance times γ/(β h),
-which the very short steps after a contact event turn into m/s.
+residual, or on the residual the last contraction foresees (FORESEEN_TOL).
+What is reported (accelerations, torque, contact outputs) comes from the
+equations of motion solved at each step's end, not from the method's own q̈ and
+λ, with the step's velocities first projected onto Φ_q q̇ = ν: in the index-3
+form they satisfy it only to the position tolerance times γ/(β h), which the
+very short steps after a contact event turn into m/s.
 
 Step control: the local error of q is estimated as (β − 1/6) h² (q̈_{n+1} − q̈_n)
 (Zienkiewicz & Xie, Earthquake Eng. Struct. Dyn. 20, 1991; Géradin & Cardona,
